@@ -1,0 +1,61 @@
+// horizon: all-pairs fixed-radius neighbour lists from the command line.
+#include <unistd.h>
+
+#include <cstdio>
+#include <iostream>
+
+#include "commands.hpp"
+#include "horizon/error.hpp"
+#include "horizon/generate.hpp"
+#include "horizon/io.hpp"
+
+namespace horizon::cli {
+
+PointSet load_input(const std::string& input) {
+  const std::string lattice_prefix = "lattice:";
+  if (input.rfind(lattice_prefix, 0) == 0) {
+    int n = 0;
+    try {
+      n = std::stoi(input.substr(lattice_prefix.size()));
+    } catch (const std::exception&) {
+    }
+    if (n < 1) throw Error("'" + input + "': expected lattice:N with N >= 1");
+    return lattice(n);
+  }
+  return read_points(input);
+}
+
+Progress::Progress(bool quiet) : on_(!quiet && ::isatty(STDERR_FILENO)) {}
+
+void Progress::say(const std::string& what) const {
+  if (on_) std::fprintf(stderr, "horizon: %s\n", what.c_str());
+}
+
+}  // namespace horizon::cli
+
+int main(int argc, char** argv) {
+  CLI::App app{"horizon: all-pairs fixed-radius neighbour lists (cell lists, CPU and GPU)"};
+  app.require_subcommand(1);
+  horizon::cli::add_generate(app);
+  horizon::cli::add_search(app);
+  horizon::cli::add_verify(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return 2;
+  } catch (const horizon::cli::VerifyFailed&) {
+    return 1;
+  } catch (const horizon::Error& e) {
+    std::cerr << "horizon: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "horizon: error: out of memory (the neighbour list does not fit)\n";
+    return 2;
+  }
+  return 0;
+}

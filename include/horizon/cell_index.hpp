@@ -1,0 +1,55 @@
+#pragma once
+/// \file cell_index.hpp
+/// Points sorted by the cell they occupy (thesis §4.2.3): the order, the coordinates in that
+/// order (structure of arrays, so a stencil row is read contiguously), the occupied cells with
+/// their first sorted position, and a lookup from a row of cells to its run of sorted positions.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "horizon/grid.hpp"
+#include "horizon/points.hpp"
+
+namespace horizon {
+
+class CellIndex {
+public:
+  /// A run [begin, end) of sorted positions.
+  struct Range {
+    std::int64_t begin, end;
+  };
+
+  CellIndex(PointView points, const Grid& grid);
+
+  const Grid& grid() const { return grid_; }
+  std::size_t point_count() const { return order_.size(); }
+  std::size_t occupied_cells() const { return cell_begin_.empty() ? 0 : cell_begin_.size() - 1; }
+
+  /// Input id of the point at sorted position p.
+  const std::vector<point_id>& order() const { return order_; }
+  /// Coordinates along each axis in sorted order (z is all zeros in 2-D).
+  const std::vector<double>& coords(int axis) const { return sorted_[axis]; }
+  /// Sorted positions of the points in occupied cell c.
+  Range points_of(std::size_t c) const { return {cell_begin_[c], cell_begin_[c + 1]}; }
+
+  /// The stencil of occupied cell c: for each row of cells (cy+dy, cz+dz), |dy|,|dz| <= k, the
+  /// run of sorted positions of cells cx-k .. cx+k, which are adjacent in the sort. Empty rows
+  /// are skipped; rows come in ascending position order. Returns the number of ranges written.
+  int stencil(std::size_t c, Range* out) const;
+
+  /// Largest number of ranges stencil() can write: (2k+1)^(dims-1).
+  int max_stencil_rows() const;
+
+private:
+  Range row_dense(std::int64_t cx, std::int64_t cy, std::int64_t cz) const;
+  Range row_sparse(std::int64_t cx, std::int64_t cy, std::int64_t cz) const;
+
+  Grid grid_;
+  std::vector<point_id> order_;
+  std::array<std::vector<double>, 3> sorted_;
+  std::vector<std::int64_t> cell_begin_;  ///< occupied cell -> first sorted position (+ end)
+  std::vector<std::array<std::int64_t, 3>> cell_coord_;  ///< occupied cell -> (cx, cy, cz)
+  std::vector<std::int64_t> start_by_id_;  ///< dense only: linear cell id -> first position
+};
+
+}  // namespace horizon

@@ -1,0 +1,32 @@
+#pragma once
+/// \file io.hpp
+/// Reading points and writing neighbour lists. Every writer writes a temporary file beside the
+/// target and renames it, so a failure never leaves a truncated file that looks valid. Every
+/// reader error names the file and, for text, the line.
+#include <string>
+
+#include "horizon/neighbor_list.hpp"
+#include "horizon/points.hpp"
+
+namespace horizon {
+
+/// Points from `path`, by extension: `.npy` (N x 2 or N x 3, little-endian float32/float64),
+/// else text: one point per line, `x y [z]` separated by commas or spaces, `#` comments, an
+/// optional header line; or Peridigm's discretization `x y z block_id volume` (5 columns).
+PointSet read_points(const std::string& path);
+
+/// Points to `.npy` (N x dims float64) or, for any other extension, text `x y [z]` lines.
+void write_points(const std::string& path, const PointSet& points);
+
+enum class ListFormat { npy, csv };
+
+/// npy: PREFIX.offsets.npy (int64, N+1) and PREFIX.indices.npy (int32); csv: PREFIX.csv with
+/// one `i,j` row per entry. Returns the paths written, comma-separated.
+std::string write_neighbor_list(const std::string& prefix, const NeighborList& list,
+                                ListFormat format);
+
+/// Reads what write_neighbor_list wrote (either format; int32 or int64 indices). The number of
+/// points is needed for csv, whose rows do not record points with no neighbours.
+NeighborList read_neighbor_list(const std::string& prefix, std::size_t points, bool half);
+
+}  // namespace horizon

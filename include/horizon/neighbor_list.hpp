@@ -1,0 +1,46 @@
+#pragma once
+/// \file neighbor_list.hpp
+/// The result: every point's family in compressed sparse rows. Row i lists the input ids of
+/// i's neighbours in ascending order. In a full list j is in row i exactly when i is in row j;
+/// a half list keeps each pair once, in the row of its smaller id.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "horizon/points.hpp"
+
+namespace horizon {
+
+class NeighborList {
+public:
+  NeighborList() : offsets_(1, 0) {}
+  NeighborList(std::vector<std::int64_t> offsets, std::vector<point_id> indices, bool half)
+      : offsets_(std::move(offsets)), indices_(std::move(indices)), half_(half) {}
+
+  /// Number of rows (points).
+  std::size_t size() const { return offsets_.size() - 1; }
+  /// Total number of entries (each pair counted twice in a full list).
+  std::int64_t total() const { return offsets_.back(); }
+  bool is_half() const { return half_; }
+
+  /// The family of point i, sorted ascending.
+  std::span<const point_id> row(std::size_t i) const {
+    return {indices_.data() + offsets_[i], static_cast<std::size_t>(offsets_[i + 1] - offsets_[i])};
+  }
+  std::size_t row_size(std::size_t i) const {
+    return static_cast<std::size_t>(offsets_[i + 1] - offsets_[i]);
+  }
+
+  /// CSR arrays: offsets has size()+1 entries, indices has total().
+  const std::vector<std::int64_t>& offsets() const { return offsets_; }
+  const std::vector<point_id>& indices() const { return indices_; }
+
+  friend bool operator==(const NeighborList&, const NeighborList&) = default;
+
+private:
+  std::vector<std::int64_t> offsets_;
+  std::vector<point_id> indices_;
+  bool half_ = false;
+};
+
+}  // namespace horizon

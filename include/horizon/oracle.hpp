@@ -1,0 +1,19 @@
+#pragma once
+/// \file oracle.hpp
+/// The brute-force O(N^2) answer every backend is checked against: each pair tested once with
+/// the same metric arithmetic, no grid involved.
+#include <vector>
+
+#include "horizon/neighbor_list.hpp"
+#include "horizon/search.hpp"
+
+namespace horizon {
+
+/// The whole list (full or half, as options.half says; rows sorted).
+NeighborList brute_force(PointView points, const SearchOptions& options);
+
+/// The sorted family of point i alone (the half-list row when options.half), in O(N).
+std::vector<point_id> brute_force_family(PointView points, std::size_t i,
+                                         const SearchOptions& options);
+
+}  // namespace horizon

@@ -1,0 +1,57 @@
+#pragma once
+/// \file points.hpp
+/// Points as the caller stores them: a zero-copy view over AoS coordinates (x y [z] per point),
+/// float64 or float32, and an owning PointSet for points read from files or generated.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace horizon {
+
+/// Ids of points (and neighbours) are 32-bit: one node-local search handles < 2^31 points.
+using point_id = std::int32_t;
+
+/// A read-only view of `count` points of `dims` (2 or 3) coordinates stored point after point.
+/// float32 coordinates are promoted to double when read, so a float32 view gives exactly the
+/// neighbour list of a float64 view holding the same values.
+class PointView {
+public:
+  PointView() = default;
+  PointView(const double* xyz, std::size_t count, int dims)
+      : data_(xyz), count_(count), dims_(dims), single_(false) {}
+  PointView(const float* xyz, std::size_t count, int dims)
+      : data_(xyz), count_(count), dims_(dims), single_(true) {}
+
+  std::size_t size() const { return count_; }
+  bool empty() const { return count_ == 0; }
+  int dims() const { return dims_; }
+  bool is_float32() const { return single_; }
+
+  /// Coordinate `axis` of point `i`, as a double.
+  double operator()(std::size_t i, int axis) const {
+    const std::size_t at = i * static_cast<std::size_t>(dims_) + static_cast<std::size_t>(axis);
+    return single_ ? static_cast<double>(static_cast<const float*>(data_)[at])
+                   : static_cast<const double*>(data_)[at];
+  }
+
+private:
+  const void* data_ = nullptr;
+  std::size_t count_ = 0;
+  int dims_ = 3;
+  bool single_ = false;
+};
+
+/// Points that own their coordinates (AoS float64).
+struct PointSet {
+  int dims = 3;
+  std::vector<double> xyz;
+
+  std::size_t size() const { return dims > 0 ? xyz.size() / static_cast<std::size_t>(dims) : 0; }
+  PointView view() const { return PointView(xyz.data(), size(), dims); }
+};
+
+/// Throws horizon::Error naming the first point with a NaN or infinite coordinate, or a view
+/// whose dimension is not 2 or 3.
+void validate(PointView points);
+
+}  // namespace horizon

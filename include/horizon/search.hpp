@@ -1,0 +1,48 @@
+#pragma once
+/// \file search.hpp
+/// The entry point: all-pairs fixed-radius neighbour search of one point set against itself.
+#include <optional>
+#include <string>
+
+#include "horizon/metric.hpp"
+#include "horizon/neighbor_list.hpp"
+#include "horizon/points.hpp"
+
+namespace horizon {
+
+/// Execution strategies of one algorithm; all return the same list bit for bit.
+enum class Backend {
+  automatic,  ///< the fastest one built and usable here
+  serial,     ///< the readable reference
+  openmp,     ///< all cores of one node
+  cuda,       ///< one GPU (when built with CUDA)
+};
+Backend parse_backend(const std::string& name);
+const char* backend_name(Backend backend);
+/// Whether `backend` is compiled in and has hardware to run on.
+bool backend_available(Backend backend);
+
+struct SearchOptions {
+  double horizon = 0;                 ///< pairs closer than this (strictly) are neighbours
+  Metric metric = Metric::euclidean;
+  int cells_per_horizon = 1;          ///< k: cell side horizon/k, stencil of 2k+1 cells per axis
+  bool half = false;                  ///< keep each pair once, in the row of the smaller id
+  bool sort_rows = true;              ///< sort each family by id (false: any order, faster)
+  Backend backend = Backend::automatic;
+  int threads = 0;                    ///< openmp threads; 0 = all cores
+  int device = 0;                     ///< cuda device
+};
+
+/// Seconds spent in each phase, and what ran.
+struct SearchStats {
+  Backend backend = Backend::serial;
+  int threads = 1;
+  double grid_seconds = 0;    ///< bounds, cell coordinates, sort by cell
+  double search_seconds = 0;  ///< distance tests and CSR assembly
+};
+
+/// The neighbour list of `points` against themselves. Throws horizon::Error on NaN/Inf
+/// coordinates, a horizon that is not finite and > 0, k outside 1..3, or >= 2^31 points.
+NeighborList search(PointView points, const SearchOptions& options, SearchStats* stats = nullptr);
+
+}  // namespace horizon

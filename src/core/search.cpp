@@ -1,0 +1,61 @@
+#include "horizon/search.hpp"
+
+#include "../backends/backends.hpp"
+#include "horizon/error.hpp"
+#include "horizon/grid.hpp"
+
+namespace horizon {
+
+Backend parse_backend(const std::string& name) {
+  if (name == "auto") return Backend::automatic;
+  if (name == "serial") return Backend::serial;
+  if (name == "openmp") return Backend::openmp;
+  if (name == "cuda") return Backend::cuda;
+  throw Error("unknown backend '" + name + "' (expected auto, serial, openmp or cuda)");
+}
+
+const char* backend_name(Backend backend) {
+  switch (backend) {
+    case Backend::automatic: return "auto";
+    case Backend::serial: return "serial";
+    case Backend::openmp: return "openmp";
+    case Backend::cuda: return "cuda";
+  }
+  return "?";
+}
+
+bool backend_available(Backend backend) {
+  switch (backend) {
+    case Backend::automatic:
+    case Backend::serial: return true;
+    case Backend::openmp: return detail::openmp_built();
+    case Backend::cuda: return detail::cuda_usable();
+  }
+  return false;
+}
+
+NeighborList search(PointView points, const SearchOptions& options, SearchStats* stats) {
+  validate(points);
+  validate_horizon(options.horizon, options.cells_per_horizon);
+  SearchStats local;
+  SearchStats& out = stats ? *stats : local;
+  out = SearchStats{};
+
+  Backend backend = options.backend;
+  if (backend == Backend::automatic)
+    backend = backend_available(Backend::cuda)     ? Backend::cuda
+              : backend_available(Backend::openmp) ? Backend::openmp
+                                                   : Backend::serial;
+  if (!backend_available(backend))
+    throw Error(std::string("backend '") + backend_name(backend) + "' is not available here");
+  out.backend = backend;
+  if (points.empty()) return NeighborList();
+
+  switch (backend) {
+    case Backend::openmp: return detail::search_openmp(points, options, out);
+    case Backend::cuda: return detail::search_cuda(points, options, out);
+    default: return detail::search_serial(points, options, out);
+  }
+}
+
+}  // namespace horizon

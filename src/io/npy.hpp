@@ -1,0 +1,24 @@
+#pragma once
+// NumPy .npy files (format versions 1-3): little-endian f4, f8, i4, i8 arrays.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace horizon::detail {
+
+struct NpyArray {
+  std::string type;                 ///< "f4", "f8", "i4" or "i8"
+  std::vector<std::size_t> shape;
+  std::vector<char> bytes;          ///< C order
+  std::size_t elements() const;
+};
+
+/// Throws horizon::Error naming `path` for a missing file, a bad header, a big-endian or
+/// unsupported dtype, or too few bytes.
+NpyArray read_npy(const std::string& path);
+
+/// Writes `data` (C order) under a temporary name, then renames it to `path`.
+void write_npy(const std::string& path, const std::string& type,
+               const std::vector<std::size_t>& shape, const void* data);
+
+}  // namespace horizon::detail

@@ -1,0 +1,134 @@
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "atomic_file.hpp"
+#include "horizon/error.hpp"
+#include "horizon/io.hpp"
+#include "npy.hpp"
+
+namespace horizon {
+
+namespace {
+
+bool ends_with(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+PointSet points_from_npy(const std::string& path) {
+  const detail::NpyArray array = detail::read_npy(path);
+  if (array.shape.size() != 2 || (array.shape[1] != 2 && array.shape[1] != 3))
+    throw Error(path + ": expected an N x 2 or N x 3 array of points");
+  if (array.type != "f8" && array.type != "f4")
+    throw Error(path + ": expected float64 or float32 coordinates, found " + array.type);
+  PointSet set{static_cast<int>(array.shape[1]), std::vector<double>(array.elements())};
+  for (std::size_t e = 0; e < set.xyz.size(); ++e) {
+    if (array.type == "f8") {
+      std::memcpy(&set.xyz[e], &array.bytes[e * 8], 8);
+    } else {
+      float f;
+      std::memcpy(&f, &array.bytes[e * 4], 4);
+      set.xyz[e] = f;
+    }
+    if (!std::isfinite(set.xyz[e]))
+      throw Error(path + ": point " + std::to_string(e / array.shape[1]) +
+                  " has a non-finite coordinate");
+  }
+  return set;
+}
+
+std::vector<std::string_view> split_fields(std::string_view line) {
+  std::vector<std::string_view> fields;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && (line[i] == ',' || std::isspace(static_cast<unsigned char>(line[i])))) ++i;
+    const std::size_t start = i;
+    while (i < line.size() && line[i] != ',' && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    if (i > start) fields.push_back(line.substr(start, i - start));
+  }
+  return fields;
+}
+
+bool parse_number(std::string_view field, double& value) {
+  const char* first = field.data();
+  if (*first == '+') ++first;
+  const auto [end, error] = std::from_chars(first, field.data() + field.size(), value);
+  return error == std::errc() && end == field.data() + field.size();
+}
+
+// Text: `x y [z]` points, or Peridigm's `x y z block_id volume` (the first three columns).
+PointSet points_from_text(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
+  PointSet set{0, {}};
+  std::size_t columns = 0;
+  bool header_seen = false;
+  std::string line;
+  for (std::size_t number = 1; std::getline(in, line); ++number) {
+    std::string_view text(line);
+    if (const auto hash = text.find('#'); hash != std::string_view::npos) text = text.substr(0, hash);
+    const auto fields = split_fields(text);
+    if (fields.empty()) continue;
+    const std::string where = path + ":" + std::to_string(number) + ": ";
+    double values[5];
+    if (columns == 0) {
+      // A first line of names only (x,y,z) is a header.
+      bool names_only = !header_seen;
+      for (const auto field : fields) names_only = names_only && !parse_number(field, values[0]);
+      if (names_only) {
+        header_seen = true;
+        continue;
+      }
+      if (fields.size() != 2 && fields.size() != 3 && fields.size() != 5)
+        throw Error(where + "expected 2 or 3 columns (x y [z]) or 5 (Peridigm: x y z block volume), found " +
+                    std::to_string(fields.size()));
+      columns = fields.size();
+      set.dims = columns == 2 ? 2 : 3;
+    }
+    if (fields.size() != columns)
+      throw Error(where + "expected " + std::to_string(columns) + " columns, found " +
+                  std::to_string(fields.size()));
+    for (std::size_t f = 0; f < fields.size(); ++f)
+      if (!parse_number(fields[f], values[f]))
+        throw Error(where + "'" + std::string(fields[f]) + "' is not a number");
+    for (int a = 0; a < set.dims; ++a) {
+      if (!std::isfinite(values[a]))
+        throw Error(where + "non-finite coordinate '" + std::string(fields[a]) + "'");
+      set.xyz.push_back(values[a]);
+    }
+  }
+  if (set.dims == 0) set.dims = 3;  // an empty file: no points
+  return set;
+}
+
+}  // namespace
+
+PointSet read_points(const std::string& path) {
+  return ends_with(path, ".npy") ? points_from_npy(path) : points_from_text(path);
+}
+
+void write_points(const std::string& path, const PointSet& points) {
+  if (ends_with(path, ".npy")) {
+    detail::write_npy(path, "f8", {points.size(), static_cast<std::size_t>(points.dims)},
+                      points.xyz.data());
+    return;
+  }
+  detail::AtomicFile file(path);
+  std::string text;
+  char number[32];
+  for (std::size_t i = 0; i < points.xyz.size(); ++i) {
+    const auto end = std::to_chars(number, number + sizeof number, points.xyz[i]).ptr;
+    text.append(number, end);
+    text += (i + 1) % static_cast<std::size_t>(points.dims) == 0 ? '\n' : ' ';
+    if (text.size() > (1 << 20)) {
+      file.write(text);
+      text.clear();
+    }
+  }
+  file.write(text);
+  file.commit();
+}
+
+}  // namespace horizon
