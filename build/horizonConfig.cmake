@@ -25,6 +25,7 @@ endmacro()
 ####################################################################################
 include(CMakeFindDependencyMacro)
 find_dependency(OpenMP COMPONENTS CXX)
+find_dependency(hwy)
 if(OFF)
   find_dependency(CUDAToolkit)
 endif()

@@ -27,7 +27,7 @@ std::vector<CellRun> split_into_runs(const CellIndex& index, int threads) {
            static_cast<std::size_t>(index.points_of(last).end - start) < points_per_run)
       ++last;
     last = std::min(cells, std::max(last + 1, first + 1));
-    runs.push_back(CellRun{first, last, {}});
+    runs.push_back(CellRun{first, last});
     first = last;
   }
   return runs;
@@ -41,19 +41,17 @@ NeighborList search_openmp(PointView points, const SearchOptions& options, Searc
   const CellIndex index(points, Grid::fit(points, options.horizon, options.cells_per_horizon));
   stats.grid_seconds = clock.lap();
 
-  std::vector<CellRun> runs = split_into_runs(index, threads);
+  const std::vector<CellRun> runs = split_into_runs(index, threads);
   std::vector<std::int64_t> offsets(points.size() + 1, 0);
   const auto run_count = static_cast<std::int64_t>(runs.size());
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-  for (std::int64_t r = 0; r < run_count; ++r) find_families(index, options, runs[r], offsets.data());
+  for (std::int64_t r = 0; r < run_count; ++r) count_families(index, options, runs[r], offsets.data());
 
   std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
   std::vector<point_id> indices(static_cast<std::size_t>(offsets.back()));
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-  for (std::int64_t r = 0; r < run_count; ++r) {
-    place_rows(index, options, runs[r], offsets.data(), indices.data());
-    runs[r].ids = {};
-  }
+  for (std::int64_t r = 0; r < run_count; ++r)
+    fill_families(index, options, runs[r], offsets.data(), indices.data());
   stats.search_seconds = clock.lap();
   stats.backend = Backend::openmp;
   stats.threads = threads;

@@ -13,15 +13,15 @@ NeighborList search_serial(PointView points, const SearchOptions& options, Searc
   const CellIndex index(points, Grid::fit(points, options.horizon, options.cells_per_horizon));
   stats.grid_seconds = clock.lap();
 
-  // 2. For each occupied cell, test its points against the points of its stencil.
+  // 2. Count each family: test every point against the points of its cell's stencil.
+  const CellRun all{0, index.occupied_cells()};
   std::vector<std::int64_t> offsets(points.size() + 1, 0);
-  CellRun all{0, index.occupied_cells(), {}};
-  find_families(index, options, all, offsets.data());
+  count_families(index, options, all, offsets.data());
 
-  // 3. Family sizes become row offsets; rows move to their input-id places, sorted.
+  // 3. Family sizes become row offsets; a second pass writes each row in its place.
   std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
   std::vector<point_id> indices(static_cast<std::size_t>(offsets.back()));
-  place_rows(index, options, all, offsets.data(), indices.data());
+  fill_families(index, options, all, offsets.data(), indices.data());
   stats.search_seconds = clock.lap();
   stats.backend = Backend::serial;
   stats.threads = 1;

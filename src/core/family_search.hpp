@@ -1,30 +1,26 @@
 #pragma once
-// The search step shared by the CPU backends: find the families of the points of a run of
-// occupied cells, then place the rows into the CSR arrays by input id. The serial backend runs
-// one run over all cells; the openmp backend many runs in parallel.
+// The search step shared by the CPU backends, in two passes over runs of occupied cells, as
+// the GPU backend does it: count each family, scan the counts into row offsets, then fill each
+// row in place. Counting first means no buffer grows, nothing is copied, and nothing is capped.
 #include <cstdint>
-#include <memory>
-#include <vector>
 
 #include "horizon/cell_index.hpp"
 #include "horizon/search.hpp"
 
 namespace horizon::detail {
 
-/// Families of the points in occupied cells [first_cell, last_cell), row after row in sorted
-/// position order.
+/// Occupied cells [first, last) of a CellIndex.
 struct CellRun {
-  std::size_t first_cell = 0, last_cell = 0;
-  std::vector<point_id> ids;  ///< neighbours' input ids
+  std::size_t first = 0, last = 0;
 };
 
-/// Fills run.ids and, for each point i of the run, offsets[i + 1] = the size of its family.
-void find_families(const CellIndex& index, const SearchOptions& options, CellRun& run,
-                   std::int64_t* offsets);
+/// For each point i of the run: offsets[i + 1] = the size of its family.
+void count_families(const CellIndex& index, const SearchOptions& options, CellRun run,
+                    std::int64_t* offsets);
 
-/// Copies the rows of `run` to indices[offsets[i] ...] (offsets now scanned), sorting each row
-/// when options.sort_rows.
-void place_rows(const CellIndex& index, const SearchOptions& options, const CellRun& run,
-                const std::int64_t* offsets, point_id* indices);
+/// Writes the family of each point i of the run to indices[offsets[i] ...] (offsets scanned),
+/// sorted ascending when options.sort_rows.
+void fill_families(const CellIndex& index, const SearchOptions& options, CellRun run,
+                   const std::int64_t* offsets, point_id* indices);
 
 }  // namespace horizon::detail

@@ -61,7 +61,7 @@ add_library(horizon::horizon STATIC IMPORTED)
 set_target_properties(horizon::horizon PROPERTIES
   INTERFACE_COMPILE_FEATURES "cxx_std_20"
   INTERFACE_INCLUDE_DIRECTORIES "${_IMPORT_PREFIX}/include"
-  INTERFACE_LINK_LIBRARIES "OpenMP::OpenMP_CXX"
+  INTERFACE_LINK_LIBRARIES "OpenMP::OpenMP_CXX;\$<LINK_ONLY:hwy::hwy_contrib>"
 )
 
 # Create imported target horizon::horizon_cli

@@ -143,6 +143,8 @@ bin/horizon: apps/horizon/CMakeFiles/horizon_cli.dir/build.make
 bin/horizon: src/libhorizon.a
 bin/horizon: /usr/lib/gcc/x86_64-linux-gnu/12/libgomp.so
 bin/horizon: /usr/lib/x86_64-linux-gnu/libpthread.a
+bin/horizon: /usr/lib/x86_64-linux-gnu/libhwy_contrib.so.1.0.3
+bin/horizon: /usr/lib/x86_64-linux-gnu/libhwy.so.1.0.3
 bin/horizon: apps/horizon/CMakeFiles/horizon_cli.dir/link.txt
 	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green --bold --progress-dir=/work/main/build/CMakeFiles --progress-num=$(CMAKE_PROGRESS_5) "Linking CXX executable ../../bin/horizon"
 	cd /work/main/build/apps/horizon && $(CMAKE_COMMAND) -E cmake_link_script CMakeFiles/horizon_cli.dir/link.txt --verbose=$(VERBOSE)

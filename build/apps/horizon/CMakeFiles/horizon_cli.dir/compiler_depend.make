@@ -1469,6 +1469,7 @@ apps/horizon/CMakeFiles/horizon_cli.dir/verify.cpp.o: /work/main/apps/horizon/ve
   /usr/include/CLI/Formatter.hpp \
   /work/main/include/horizon/points.hpp \
   /usr/include/c++/12/cstddef \
+  /work/main/include/horizon/grid.hpp \
   /work/main/include/horizon/io.hpp \
   /work/main/include/horizon/neighbor_list.hpp \
   /usr/include/c++/12/span \
@@ -2057,6 +2058,8 @@ apps/horizon/CMakeFiles/horizon_cli.dir/verify.cpp.o: /work/main/apps/horizon/ve
 /usr/include/CLI/StringTools.hpp:
 
 /usr/include/c++/12/compare:
+
+/work/main/include/horizon/grid.hpp:
 
 /usr/include/c++/12/iomanip:
 
