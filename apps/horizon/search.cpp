@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "horizon/error.hpp"
 #include "horizon/io.hpp"
 #include "horizon/search.hpp"
 #include "horizon/stopwatch.hpp"
@@ -21,6 +22,9 @@ struct SearchArgs {
 
 void run_search(const SearchArgs& args) {
   const Progress progress(args.quiet);
+  for (const char* suffix : {".csv", ".offsets.npy", ".indices.npy"})
+    if (!args.out.empty() && args.out + suffix == args.input)
+      throw Error("--out " + args.out + " would overwrite the input " + args.input);
   Stopwatch clock;
   progress.say("reading " + args.input);
   const PointSet points = load_input(args.input);

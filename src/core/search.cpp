@@ -49,7 +49,7 @@ NeighborList search(PointView points, const SearchOptions& options, SearchStats*
   if (!backend_available(backend))
     throw Error(std::string("backend '") + backend_name(backend) + "' is not available here");
   out.backend = backend;
-  if (points.empty()) return NeighborList();
+  if (points.empty()) return NeighborList({0}, {}, options.half);
 
   switch (backend) {
     case Backend::openmp: return detail::search_openmp(points, options, out);

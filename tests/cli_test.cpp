@@ -1,0 +1,138 @@
+// The horizon command line: every subcommand, and every error path's exit status and message.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int status;
+  std::string output;  // stdout and stderr together
+};
+
+class CliTest : public ::testing::Test {
+protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("horizon_cli_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  Result run(const std::string& arguments) const {
+    const std::string command = "cd " + dir_.string() + " && " HORIZON_CLI " " + arguments + " 2>&1";
+    FILE* pipe = ::popen(command.c_str(), "r");
+    Result result{-1, {}};
+    std::array<char, 4096> buffer;
+    while (std::size_t got = std::fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), got);
+    const int status = ::pclose(pipe);
+    result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return result;
+  }
+  void write(const std::string& name, const std::string& text) const { std::ofstream(dir_ / name) << text; }
+  bool exists(const std::string& name) const { return fs::exists(dir_ / name); }
+
+  fs::path dir_;
+};
+
+#define EXPECT_OUTPUT(result, text) \
+  EXPECT_NE((result).output.find(text), std::string::npos) << (result).output
+
+TEST_F(CliTest, GenerateSearchVerify) {
+  ASSERT_EQ(run("generate lattice --n 12 --out lat.npy").status, 0);
+  ASSERT_EQ(run("generate random --count 3000 --seed 4 --out rnd.txt").status, 0);
+  ASSERT_EQ(run("generate clusters --count 3000 --clusters 5 --sigma 0.3 --dims 2 --out clu.xyz").status, 0);
+
+  const Result search = run("search lat.npy --horizon 1.25 --backend serial --out lat --json");
+  ASSERT_EQ(search.status, 0) << search.output;
+  // 12^3 lattice, h = 10/12, m = 1.5: closed form sum over |v| < 1.5 of prod (12 - |v_d|).
+  EXPECT_OUTPUT(search, "\"neighbors\":26928");
+  for (const char* key : {"\"points\":1728", "\"dims\":3", "\"backend\":\"serial\"", "\"threads\":1",
+                          "\"grid\":", "\"search\":", "\"write\":", "\"total\":", "\"points_per_second\":"})
+    EXPECT_OUTPUT(search, key);
+  EXPECT_TRUE(exists("lat.offsets.npy") && exists("lat.indices.npy"));
+  EXPECT_EQ(run("verify lat.npy lat --horizon 1.25").status, 0);
+
+  ASSERT_EQ(run("search rnd.txt --horizon 0.9 --backend openmp --threads 2 --metric l1 --cells-per-horizon 2 --half --out rnd --format csv").status, 0);
+  EXPECT_TRUE(exists("rnd.csv"));
+  const Result ok = run("verify rnd.txt rnd --horizon 0.9 --metric l1 --half");
+  EXPECT_EQ(ok.status, 0) << ok.output;
+  EXPECT_OUTPUT(ok, "OK: all 3000 rows (exact)");
+
+  ASSERT_EQ(run("search clu.xyz --horizon 0.2 --metric linf --out clu").status, 0);
+  EXPECT_EQ(run("verify clu.xyz clu --horizon 0.2 --metric linf").status, 0);
+  // A list checked against the wrong horizon differs from the oracle: exit 1.
+  const Result wrong = run("verify clu.xyz clu --horizon 0.21 --metric linf");
+  EXPECT_EQ(wrong.status, 1) << wrong.output;
+  EXPECT_OUTPUT(wrong, "MISMATCH row");
+}
+
+TEST_F(CliTest, VerifySamplesLargeInputs) {
+  ASSERT_EQ(run("generate random --count 30000 --out big.npy").status, 0);
+  ASSERT_EQ(run("search big.npy --horizon 0.5 --out big --quiet").status, 0);
+  const Result ok = run("verify big.npy big --horizon 0.5 --sample 500");
+  EXPECT_EQ(ok.status, 0) << ok.output;
+  EXPECT_OUTPUT(ok, "500 sampled rows of 30000");
+}
+
+TEST_F(CliTest, BuiltInLatticeAndEmptyInput) {
+  const Result lattice = run("search lattice:10 --horizon 1.5");
+  EXPECT_EQ(lattice.status, 0) << lattice.output;
+  EXPECT_OUTPUT(lattice, "1000 points (3-D)");
+  write("empty.csv", "# nothing\n");
+  const Result empty = run("search empty.csv --horizon 1 --out e --json");
+  EXPECT_EQ(empty.status, 0) << empty.output;
+  EXPECT_OUTPUT(empty, "\"neighbors\":0");
+  EXPECT_TRUE(exists("e.offsets.npy"));
+}
+
+TEST_F(CliTest, BadInputExitsTwoWithOneClearMessage) {
+  write("nan.csv", "0 0 0\n1 nan 2\n");
+  write("ragged.csv", "0 0 0\n1 2\n");
+  write("words.csv", "0 0 0\n1 two 3\n");
+  write("good.csv", "0 0 0\n1 1 1\n");
+  const std::pair<std::string, std::string> cases[] = {
+      {"search nan.csv --horizon 1", "nan.csv:2: non-finite coordinate"},
+      {"search ragged.csv --horizon 1", "ragged.csv:2: expected 3 columns, found 2"},
+      {"search words.csv --horizon 1", "words.csv:2: 'two' is not a number"},
+      {"search missing.npy --horizon 1", "missing.npy: cannot open"},
+      {"search good.csv --horizon 0", "horizon must be finite and > 0"},
+      {"search good.csv --horizon -2", "horizon must be finite and > 0"},
+      {"search good.csv --horizon nan", "horizon must be finite and > 0"},
+      {"search good.csv --horizon 1 --out nowhere/list", "output directory 'nowhere' does not exist"},
+      {"search good.csv --horizon 1 --cells-per-horizon 4", "cells-per-horizon"},
+      {"search good.csv", "--horizon is required"},
+      {"search good.csv --horizon 1 --backend gpu", "backend"},
+      {"verify good.csv missing --horizon 1", "missing.offsets.npy: cannot open"},
+      {"search lattice:0 --horizon 1", "expected lattice:N"},
+  };
+  for (const auto& [arguments, message] : cases) {
+    const Result result = run(arguments);
+    EXPECT_EQ(result.status, 2) << arguments << "\n" << result.output;
+    EXPECT_OUTPUT(result, message);
+  }
+  EXPECT_FALSE(exists("nowhere"));
+}
+
+TEST_F(CliTest, FailedWriteLeavesNoFileThatLooksValid) {
+  write("good.csv", "0 0 0\n1 1 1\n");
+  fs::create_directory(dir_ / "locked");
+  fs::permissions(dir_ / "locked", fs::perms::owner_read | fs::perms::owner_exec);
+  const Result result = run("search good.csv --horizon 2 --out locked/list");
+  if (::geteuid() != 0) {  // root ignores permissions
+    EXPECT_EQ(result.status, 2) << result.output;
+    EXPECT_OUTPUT(result, "locked/list");
+  }
+  for (const auto& entry : fs::directory_iterator(dir_ / "locked"))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+  fs::permissions(dir_ / "locked", fs::perms::owner_all);
+}
+
+}  // namespace

@@ -1,0 +1,55 @@
+#pragma once
+// Point sets the oracle tests run every backend on: each is small enough for brute force and
+// chosen to break a particular assumption of the grid.
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "horizon/generate.hpp"
+
+namespace horizon::testing {
+
+struct Dataset {
+  std::string name;
+  PointSet points;
+  double horizon;
+};
+
+inline PointSet integer_cloud(std::size_t count, int dims, int side, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  PointSet set{dims, {}};
+  for (std::size_t i = 0; i < count * static_cast<std::size_t>(dims); ++i)
+    set.xyz.push_back(static_cast<double>(rng() % static_cast<std::uint64_t>(side)));
+  return set;
+}
+
+inline std::vector<Dataset> datasets(int dims) {
+  std::vector<Dataset> all;
+  all.push_back({"random", random_cloud(1200, dims, 7), dims == 3 ? 1.6 : 0.5});
+  all.push_back({"clustered", clustered_cloud(1200, 6, 0.4, dims, 3), 0.25});
+  const int n = dims == 3 ? 9 : 30;
+  all.push_back({"lattice_m1.5", lattice(n, dims), 1.5 * 10.0 / n});
+  all.push_back({"lattice_m3.015", lattice(n, dims), 3.015 * 10.0 / n});
+  // Integer coordinates with an integer horizon: many pairs exactly on the horizon sphere (excluded)
+  // and points exactly on cell borders.
+  all.push_back({"integer_ties", integer_cloud(700, dims, dims == 3 ? 9 : 25, 11), 3.0});
+  // Every point three times: coincident points are each other's neighbours.
+  PointSet triple{dims, {}};
+  const PointSet base = random_cloud(150, dims, 5);
+  for (int copy = 0; copy < 3; ++copy) triple.xyz.insert(triple.xyz.end(), base.xyz.begin(), base.xyz.end());
+  all.push_back({"duplicates", triple, 2.0});
+  // A single point and no points.
+  all.push_back({"one_point", PointSet{dims, std::vector<double>(static_cast<std::size_t>(dims), 1.5)}, 1.0});
+  all.push_back({"empty", PointSet{dims, {}}, 1.0});
+  // Two clumps 10^12 apart with a horizon of 10^-3: a dense grid would need 10^45 cells.
+  PointSet far{dims, {}};
+  std::mt19937_64 rng(9);
+  for (int i = 0; i < 200; ++i)
+    for (int a = 0; a < dims; ++a)
+      far.xyz.push_back((i % 2 ? 1e12 : 0.0) + static_cast<double>(rng() % 2000) * 1e-6);
+  all.push_back({"huge_extent", far, 1e-3});
+  return all;
+}
+
+}  // namespace horizon::testing

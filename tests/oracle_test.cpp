@@ -1,0 +1,76 @@
+// Every backend x metric x dimension x cell size x list kind against the brute-force oracle.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <map>
+#include <tuple>
+
+#include "datasets.hpp"
+#include "horizon/oracle.hpp"
+#include "horizon/search.hpp"
+
+namespace horizon::testing {
+namespace {
+
+using Case = std::tuple<Backend, Metric, int /*dims*/, int /*k*/, bool /*half*/>;
+
+class OracleTest : public ::testing::TestWithParam<Case> {};
+
+// Skips a backend this build or machine lacks, unless HORIZON_REQUIRE_GPU=1 demands the GPU.
+void require(Backend backend) {
+  if (backend_available(backend)) return;
+  if (backend == Backend::cuda && std::getenv("HORIZON_REQUIRE_GPU") &&
+      std::string(std::getenv("HORIZON_REQUIRE_GPU")) == "1")
+    FAIL() << "HORIZON_REQUIRE_GPU=1 but the cuda backend is not usable";
+  GTEST_SKIP() << "backend " << backend_name(backend) << " is not available here (no GPU)";
+}
+
+const NeighborList& oracle(const Dataset& data, Metric metric, bool half) {
+  static std::map<std::tuple<std::string, int, Metric, bool>, NeighborList> cache;
+  const auto key = std::make_tuple(data.name, data.points.dims, metric, half);
+  auto it = cache.find(key);
+  if (it == cache.end()) {
+    SearchOptions options;
+    options.horizon = data.horizon;
+    options.metric = metric;
+    options.half = half;
+    it = cache.emplace(key, brute_force(data.points.view(), options)).first;
+  }
+  return it->second;
+}
+
+TEST_P(OracleTest, SameListAsBruteForce) {
+  const auto [backend, metric, dims, k, half] = GetParam();
+  require(backend);
+  if (::testing::Test::IsSkipped() || ::testing::Test::HasFailure()) return;
+  for (const Dataset& data : datasets(dims)) {
+    SearchOptions options;
+    options.horizon = data.horizon;
+    options.metric = metric;
+    options.cells_per_horizon = k;
+    options.half = half;
+    options.backend = backend;
+    const NeighborList list = search(data.points.view(), options);
+    const NeighborList& expected = oracle(data, metric, half);
+    ASSERT_EQ(list.size(), expected.size()) << data.name;
+    EXPECT_EQ(list.offsets(), expected.offsets()) << data.name;
+    EXPECT_EQ(list.indices(), expected.indices()) << data.name;
+    EXPECT_EQ(list.is_half(), half);
+  }
+}
+
+std::string case_name(const ::testing::TestParamInfo<Case>& info) {
+  const auto [backend, metric, dims, k, half] = info.param;
+  return std::string(backend_name(backend)) + "_" + metric_name(metric) + "_" + std::to_string(dims) +
+         "d_k" + std::to_string(k) + (half ? "_half" : "_full");
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    AllBackends, OracleTest,
+    ::testing::Combine(::testing::Values(Backend::serial, Backend::openmp, Backend::cuda),
+                       ::testing::Values(Metric::euclidean, Metric::manhattan, Metric::chebyshev),
+                       ::testing::Values(2, 3), ::testing::Values(1, 2, 3), ::testing::Bool()),
+    case_name);
+
+}  // namespace
+}  // namespace horizon::testing

@@ -1,0 +1,140 @@
+// Properties of search() beyond oracle equality: closed-form lattice counts at sizes brute force
+// cannot reach, backend agreement, float32 input, options, and errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "horizon/error.hpp"
+#include "horizon/generate.hpp"
+#include "horizon/grid.hpp"
+#include "horizon/search.hpp"
+
+namespace horizon {
+namespace {
+
+SearchOptions options_for(double horizon, Backend backend = Backend::serial, int k = 1) {
+  SearchOptions options;
+  options.horizon = horizon;
+  options.backend = backend;
+  options.cells_per_horizon = k;
+  return options;
+}
+
+TEST(LatticeCounts, MatchClosedForm) {
+  for (int dims : {2, 3})
+    for (double m : {1.5, 3.015})
+      for (Metric metric : {Metric::euclidean, Metric::manhattan, Metric::chebyshev})
+        for (int k : {1, 2, 3}) {
+          const int n = dims == 3 ? 24 : 150;
+          const PointSet points = lattice(n, dims);
+          SearchOptions options = options_for(m * 10.0 / n, Backend::openmp, k);
+          options.metric = metric;
+          EXPECT_EQ(search(points.view(), options).total(), lattice_entries(n, dims, m, metric))
+              << dims << "-D m=" << m << " " << metric_name(metric) << " k=" << k;
+        }
+}
+
+TEST(LatticeCounts, ThesisNeighbourCounts) {
+  // Interior points have 18 neighbours at m = 1.5 and 122 at m = 3.015 (DESIGN.md).
+  const PointSet points = lattice(9);
+  const std::size_t centre = 4 + 9 * (4 + 9 * 4);
+  EXPECT_EQ(search(points.view(), options_for(1.5 * 10.0 / 9)).row_size(centre), 18u);
+  EXPECT_EQ(search(points.view(), options_for(3.015 * 10.0 / 9)).row_size(centre), 122u);
+}
+
+TEST(Backends, OpenmpEqualsSerialOnLargerClouds) {
+  for (const PointSet& points : {random_cloud(60000, 3, 1), clustered_cloud(60000, 20, 0.2, 3, 2),
+                                 random_cloud(60000, 2, 3)}) {
+    SearchOptions serial = options_for(points.dims == 3 ? 0.4 : 0.06);
+    SearchOptions openmp = serial;
+    openmp.backend = Backend::openmp;
+    openmp.threads = 3;
+    EXPECT_EQ(search(points.view(), serial), search(points.view(), openmp));
+  }
+}
+
+TEST(Backends, MoreThreadsThanPoints) {
+  const PointSet points = random_cloud(5, 3, 4);
+  SearchOptions options = options_for(20.0, Backend::openmp);
+  options.threads = 16;
+  const NeighborList list = search(points.view(), options);
+  EXPECT_EQ(list.total(), 20);  // every pair within 20 in a cube of side 10
+}
+
+TEST(Backends, AutoPicksAnAvailableBackend) {
+  SearchStats stats;
+  const PointSet points = lattice(5);
+  search(points.view(), options_for(2.5, Backend::automatic), &stats);
+  EXPECT_NE(stats.backend, Backend::automatic);
+  EXPECT_TRUE(backend_available(stats.backend));
+}
+
+TEST(Input, Float32GivesTheSameListAsFloat64OfTheSameValues) {
+  const PointSet points = random_cloud(3000, 3, 8);
+  std::vector<float> single(points.xyz.begin(), points.xyz.end());
+  PointSet promoted{3, std::vector<double>(single.begin(), single.end())};
+  const auto options = options_for(0.9);
+  EXPECT_EQ(search(PointView(single.data(), 3000, 3), options), search(promoted.view(), options));
+}
+
+TEST(Options, UnsortedRowsHoldTheSameFamilies) {
+  const PointSet points = random_cloud(5000, 3, 6);
+  SearchOptions options = options_for(0.8);
+  const NeighborList sorted = search(points.view(), options);
+  options.sort_rows = false;
+  const NeighborList unsorted = search(points.view(), options);
+  ASSERT_EQ(sorted.offsets(), unsorted.offsets());
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    std::vector<point_id> row(unsorted.row(i).begin(), unsorted.row(i).end());
+    std::sort(row.begin(), row.end());
+    EXPECT_TRUE(std::equal(row.begin(), row.end(), sorted.row(i).begin(), sorted.row(i).end()));
+  }
+}
+
+TEST(Options, HalfListHoldsEachPairOnce) {
+  const PointSet points = random_cloud(4000, 3, 2);
+  SearchOptions options = options_for(0.9);
+  const NeighborList full = search(points.view(), options);
+  options.half = true;
+  const NeighborList half = search(points.view(), options);
+  EXPECT_EQ(2 * half.total(), full.total());
+  for (std::size_t i = 0; i < half.size(); ++i)
+    for (point_id j : half.row(i)) EXPECT_GT(j, static_cast<point_id>(i));
+}
+
+TEST(Grid, HugeExtentStaysSparseAndSmall) {
+  PointSet points{3, {0, 0, 0, 1e12, 1e12, 1e12, 1e12 + 2e-4, 1e12, 1e12}};
+  const Grid grid = Grid::fit(points.view(), 1e-3, 1);
+  EXPECT_FALSE(grid.dense);
+  const NeighborList list = search(points.view(), options_for(1e-3));
+  EXPECT_EQ(list.total(), 2);
+  EXPECT_EQ(list.row_size(0), 0u);
+}
+
+TEST(Errors, BadInputIsNamed) {
+  PointSet points{3, {0, 0, 0, 1, std::nan(""), 0}};
+  try {
+    search(points.view(), options_for(1.0));
+    FAIL() << "NaN accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("point 1"), std::string::npos) << e.what();
+  }
+  points.xyz[4] = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(search(points.view(), options_for(1.0)), Error);
+  points.xyz[4] = 0;
+  for (double bad : {0.0, -1.0, std::nan(""), std::numeric_limits<double>::infinity()})
+    EXPECT_THROW(search(points.view(), options_for(bad)), Error) << bad;
+  EXPECT_THROW(search(points.view(), options_for(1.0, Backend::serial, 4)), Error);
+  EXPECT_THROW(search(PointView(points.xyz.data(), 1, 4), options_for(1.0)), Error);
+}
+
+TEST(Errors, EmptyInputGivesAnEmptyList) {
+  const PointSet none{3, {}};
+  const NeighborList list = search(none.view(), options_for(1.0));
+  EXPECT_EQ(list.size(), 0u);
+  EXPECT_EQ(list.total(), 0);
+}
+
+}  // namespace
+}  // namespace horizon
