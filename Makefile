@@ -1,0 +1,34 @@
+# Quick start on a fresh Debian 12 machine (as root):
+#   make run    installs missing packages, builds, searches the 10^6-point lattice at m = 3.015
+#   make test   builds and runs every test
+BUILD ?= build
+JOBS ?= $(shell nproc)
+PACKAGES = build-essential cmake libgtest-dev libbenchmark-dev libcli11-dev libfmt-dev \
+           nlohmann-json3-dev libnanoflann-dev libhwy-dev
+
+.PHONY: deps build run test bench clean
+
+deps:
+	@missing=$$(for p in $(PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || echo $$p; done); \
+	if [ -n "$$missing" ]; then \
+	  echo "installing:" $$missing; \
+	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing; \
+	fi
+
+build: deps
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
+	cmake --build $(BUILD) -j $(JOBS)
+
+# The default problem: lattice n = 100 (10^6 points), horizon 3.015 h (h = 0.1).
+run: build
+	$(BUILD)/bin/horizon search lattice:100 --horizon 0.3015 --out $(BUILD)/lattice100
+	$(BUILD)/bin/horizon verify lattice:100 $(BUILD)/lattice100 --horizon 0.3015 --sample 2000
+
+test: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+bench: build
+	$(BUILD)/bin/horizon_bench
+
+clean:
+	rm -rf $(BUILD)
