@@ -73,6 +73,13 @@ void run_search(const SearchArgs& args) {
         {"points_per_second", rate},
         {"outputs", written},
     };
+    if (stats.backend == Backend::cuda) {
+      report["gpu"] = stats.gpu_name;
+      report["peak_gpu_bytes"] = stats.peak_gpu_bytes;
+      report["seconds"]["host_to_device"] = stats.host_to_device_seconds;
+      report["seconds"]["kernels"] = stats.kernel_seconds;
+      report["seconds"]["device_to_host"] = stats.device_to_host_seconds;
+    }
     std::cout << report.dump() << std::endl;
   } else {
     std::cout << points.size() << " points (" << points.dims << "-D), horizon " << args.horizon

@@ -11,6 +11,12 @@
 
 namespace horizon {
 
+/// The bounding box of a point set (z = 0 in 2-D).
+struct Bounds {
+  std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0};
+};
+Bounds bounds_of(PointView points);
+
 struct Grid {
   int dims = 3;
   int cells_per_horizon = 1;  ///< k: the stencil reaches k cells each way
@@ -23,7 +29,12 @@ struct Grid {
   /// The grid for `points` with cells of side horizon/k. The side is enlarged by the rounding
   /// error of computing cell coordinates (2^-49 of the extent, nothing at ordinary extents), so
   /// two points closer than the horizon are never more than k cells apart along any axis.
-  static Grid fit(PointView points, double horizon, int cells_per_horizon);
+  static Grid fit(PointView points, double horizon, int cells_per_horizon) {
+    return from_bounds(bounds_of(points), points.dims(), points.size(), horizon, cells_per_horizon);
+  }
+  /// The same grid from the bounding box of `count` points (the GPU reduces the box itself).
+  static Grid from_bounds(const Bounds& box, int dims, std::size_t count, double horizon,
+                          int cells_per_horizon);
 
   /// Cell coordinate along `axis` of a point with coordinate x (padding included).
   std::int64_t cell_of(double x, int axis) const {

@@ -4,8 +4,17 @@
 /// Euclidean compares ((dx*dx + dy*dy) + dz*dz) with horizon^2; Manhattan and Chebyshev compare
 /// the sum or maximum of |d| with the horizon. Compiled without FMA contraction, so the CPU and
 /// GPU backends take identical decisions on every pair.
+#include <math.h>
+
 #include <cmath>
 #include <string>
+
+// Functions the CUDA kernels share with the CPU backends.
+#if defined(__CUDACC__)
+#define HORIZON_HOST_DEVICE __host__ __device__
+#else
+#define HORIZON_HOST_DEVICE
+#endif
 
 namespace horizon {
 
@@ -23,13 +32,13 @@ inline double metric_threshold(Metric metric, double horizon) {
 /// Accumulated distance of a pair with coordinate differences dx, dy, dz (dz = 0 in 2-D).
 /// Pairs are neighbours when this is < metric_threshold().
 template <Metric M>
-inline double metric_accumulate(double dx, double dy, double dz) {
+HORIZON_HOST_DEVICE inline double metric_accumulate(double dx, double dy, double dz) {
   if constexpr (M == Metric::euclidean) {
     return (dx * dx + dy * dy) + dz * dz;
   } else if constexpr (M == Metric::manhattan) {
-    return (std::fabs(dx) + std::fabs(dy)) + std::fabs(dz);
+    return (fabs(dx) + fabs(dy)) + fabs(dz);
   } else {
-    return std::fmax(std::fmax(std::fabs(dx), std::fabs(dy)), std::fabs(dz));
+    return fmax(fmax(fabs(dx), fabs(dy)), fabs(dz));
   }
 }
 

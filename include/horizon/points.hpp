@@ -26,6 +26,8 @@ public:
   bool empty() const { return count_ == 0; }
   int dims() const { return dims_; }
   bool is_float32() const { return single_; }
+  /// The caller's float64 coordinates (nullptr for a float32 view).
+  const double* float64_data() const { return single_ ? nullptr : static_cast<const double*>(data_); }
 
   /// Coordinate `axis` of point `i`, as a double.
   double operator()(std::size_t i, int axis) const {

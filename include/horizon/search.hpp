@@ -1,7 +1,7 @@
 #pragma once
 /// \file search.hpp
 /// The entry point: all-pairs fixed-radius neighbour search of one point set against itself.
-#include <optional>
+#include <cstdint>
 #include <string>
 
 #include "horizon/metric.hpp"
@@ -31,6 +31,7 @@ struct SearchOptions {
   Backend backend = Backend::automatic;
   int threads = 0;                    ///< openmp threads; 0 = all cores
   int device = 0;                     ///< cuda device
+  std::int64_t gpu_batch_entries = 0; ///< cuda host API: most list entries per batch (0: as fit)
 };
 
 /// Seconds spent in each phase, and what ran.
@@ -39,6 +40,12 @@ struct SearchStats {
   int threads = 1;
   double grid_seconds = 0;    ///< bounds, cell coordinates, sort by cell
   double search_seconds = 0;  ///< distance tests and CSR assembly
+  // cuda only: the GPU, its peak memory, and the host<->device split of the time.
+  std::string gpu_name;
+  std::size_t peak_gpu_bytes = 0;
+  double host_to_device_seconds = 0;
+  double kernel_seconds = 0;
+  double device_to_host_seconds = 0;
 };
 
 /// The neighbour list of `points` against themselves. Throws horizon::Error on NaN/Inf

@@ -1,13 +1,28 @@
-// Linked instead of the CUDA backend when horizon is built without CUDA.
+// Linked instead of the CUDA backend when horizon is built without CUDA: every entry point
+// exists and says why it cannot run.
 #include "backends.hpp"
+#include "horizon/cuda.hpp"
 #include "horizon/error.hpp"
 
-namespace horizon::detail {
+namespace horizon {
 
-bool cuda_usable() { return false; }
-
-NeighborList search_cuda(PointView, const SearchOptions&, SearchStats&) {
+namespace {
+[[noreturn]] void no_cuda() {
   throw Error("horizon was built without CUDA (configure with -DHORIZON_CUDA=on)");
 }
+}  // namespace
 
-}  // namespace horizon::detail
+namespace detail {
+bool cuda_usable() { return false; }
+NeighborList search_cuda(PointView, const SearchOptions&, SearchStats&) { no_cuda(); }
+}  // namespace detail
+
+void DeviceNeighborList::Free::operator()(void*) const {}
+NeighborList DeviceNeighborList::to_host(bool) const { no_cuda(); }
+DeviceNeighborList search_device(const double*, std::size_t, int, const SearchOptions&, cuda_stream,
+                                 SearchStats*) {
+  no_cuda();
+}
+std::string cuda_device_name(int) { return ""; }
+
+}  // namespace horizon

@@ -16,22 +16,27 @@ void validate_horizon(double horizon, int cells_per_horizon) {
     throw Error("cells per horizon must be 1, 2 or 3, got " + std::to_string(cells_per_horizon));
 }
 
-Grid Grid::fit(PointView points, double horizon, int cells_per_horizon) {
+Bounds bounds_of(PointView points) {
+  Bounds box;
+  if (points.empty()) return box;
+  for (int a = 0; a < points.dims(); ++a) box.lo[a] = box.hi[a] = points(0, a);
+  for (std::size_t i = 1; i < points.size(); ++i)
+    for (int a = 0; a < points.dims(); ++a) {
+      box.lo[a] = std::min(box.lo[a], points(i, a));
+      box.hi[a] = std::max(box.hi[a], points(i, a));
+    }
+  return box;
+}
+
+Grid Grid::from_bounds(const Bounds& box, int dims, std::size_t count, double horizon,
+                       int cells_per_horizon) {
   validate_horizon(horizon, cells_per_horizon);
   Grid g;
-  g.dims = points.dims();
+  g.dims = dims;
   g.cells_per_horizon = cells_per_horizon;
   g.horizon = horizon;
-
-  std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0};
-  if (!points.empty()) {
-    for (int a = 0; a < g.dims; ++a) lo[a] = hi[a] = points(0, a);
-    for (std::size_t i = 1; i < points.size(); ++i)
-      for (int a = 0; a < g.dims; ++a) {
-        lo[a] = std::min(lo[a], points(i, a));
-        hi[a] = std::max(hi[a], points(i, a));
-      }
-  }
+  const auto& lo = box.lo;
+  const auto& hi = box.hi;
   double extent = 0;
   for (int a = 0; a < g.dims; ++a) extent = std::max(extent, hi[a] - lo[a]);
   if (!std::isfinite(extent)) throw Error("the extent of the points overflows a double");
@@ -51,7 +56,7 @@ Grid Grid::fit(PointView points, double horizon, int cells_per_horizon) {
     g.cells[a] = static_cast<std::int64_t>(along) + 1 + 2 * k;
   }
   // Index cells by linear id when a table over all cells stays O(N); else look them up sparsely.
-  const double budget = 16.0 * static_cast<double>(points.size()) + 1048576.0;
+  const double budget = 16.0 * static_cast<double>(count) + 1048576.0;
   g.dense = g.cell_count() <= budget;
   return g;
 }

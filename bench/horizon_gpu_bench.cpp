@@ -1,0 +1,176 @@
+// horizon_gpu_bench: the thesis's GPU problems (Table 5.1) on one GPU. For each problem: the
+// device-resident time (points on the GPU -> CSR on the GPU), the host->host time, the same
+// list from openmp on all CPU cores (the thesis's relative throughput, Fig. 5.1), and the
+// floors measured in the same run: PCIe copies of points in and list out, and the device
+// write of the list. Prints CSV.
+#include <CLI/CLI.hpp>
+#include <cuda_runtime.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "horizon/cuda.hpp"
+#include "horizon/generate.hpp"
+#include "horizon/search.hpp"
+#include "horizon/stopwatch.hpp"
+
+namespace {
+
+using namespace horizon;
+
+void check(cudaError_t status, const char* what) {
+  if (status != cudaSuccess) throw Error(std::string(what) + ": " + cudaGetErrorString(status));
+}
+
+struct Bandwidth {
+  double host_to_device, device_to_host, device_write;  // bytes per second
+};
+
+// Pinned PCIe bandwidth both ways and device write bandwidth (cudaMemset), 1 GiB each.
+Bandwidth measure_bandwidth() {
+  const std::size_t bytes = std::size_t{1} << 30;
+  void *host, *device;
+  check(cudaMallocHost(&host, bytes), "cudaMallocHost");
+  check(cudaMalloc(&device, bytes), "cudaMalloc");
+  std::memset(host, 1, bytes);
+  auto time = [](const std::function<void()>& f) {
+    f();
+    check(cudaDeviceSynchronize(), "sync");
+    double best = 1e30;
+    for (int r = 0; r < 3; ++r) {
+      Stopwatch clock;
+      f();
+      check(cudaDeviceSynchronize(), "sync");
+      best = std::min(best, clock.lap());
+    }
+    return best;
+  };
+  Bandwidth bw;
+  bw.host_to_device = bytes / time([&] { check(cudaMemcpy(device, host, bytes, cudaMemcpyHostToDevice), "h2d"); });
+  bw.device_to_host = bytes / time([&] { check(cudaMemcpy(host, device, bytes, cudaMemcpyDeviceToHost), "d2h"); });
+  bw.device_write = bytes / time([&] { check(cudaMemset(device, 0, bytes), "memset"); });
+  cudaFree(device);
+  cudaFreeHost(host);
+  return bw;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"horizon_gpu_bench: one GPU on the thesis's problems, as CSV"};
+  std::vector<int> sizes{50, 100, 150, 200, 250, 300, 350, 400};
+  std::vector<double> spacings{1.5, 3.015};
+  std::size_t cloud_points = 8000000;
+  int reps = 3, cpu_max_n = 400;
+  app.add_option("--sizes", sizes, "lattice points per side")->delimiter(',');
+  app.add_option("--m", spacings, "horizons in lattice spacings")->delimiter(',');
+  app.add_option("--cloud-points", cloud_points, "points in the random and clustered clouds (0: none)");
+  app.add_option("--reps", reps, "repetitions of the GPU timings (median)");
+  app.add_option("--cpu-max-n", cpu_max_n, "largest lattice also timed with openmp");
+  CLI11_PARSE(app, argc, argv);
+
+  const Bandwidth bw = measure_bandwidth();
+  std::printf("# gpu: %s; cpu threads: %d; pinned h2d %.1f GB/s, d2h %.1f GB/s, device write %.0f GB/s\n",
+              cuda_device_name(0).c_str(), omp_get_max_threads(), bw.host_to_device / 1e9,
+              bw.device_to_host / 1e9, bw.device_write / 1e9);
+  std::printf("problem,n,points,m,neighbors,device_s,device_points_per_s,device_floor_s,device_vs_floor,"
+              "host_s,host_points_per_s,h2d_s,kernels_s,d2h_s,copy_floor_s,host_vs_copy_floor,"
+              "openmp_s,openmp_points_per_s,gpu_vs_openmp,peak_gpu_gib\n");
+
+  struct Problem {
+    std::string name;
+    int n;
+    double m;
+    PointSet points;
+    double horizon;
+  };
+  std::vector<std::function<Problem()>> problems;
+  for (int n : sizes)
+    for (double m : spacings) problems.push_back([=] { return Problem{"lattice", n, m, lattice(n), m * 10.0 / n}; });
+  if (cloud_points > 0)
+    for (double m : spacings) {
+      const double h = 10.0 / std::cbrt(static_cast<double>(cloud_points));
+      problems.push_back([=] { return Problem{"random", 0, m, random_cloud(cloud_points, 3, 1), m * h}; });
+      problems.push_back([=] { return Problem{"clustered", 0, m, clustered_cloud(cloud_points, 64, 1.0, 3, 2), m * h}; });
+    }
+
+  for (const auto& make : problems) {
+    const Problem p = make();
+    const double n_points = static_cast<double>(p.points.size());
+    SearchOptions options;
+    options.horizon = p.horizon;
+    options.backend = Backend::cuda;
+
+    // Device-resident: points already on the GPU, list left on the GPU.
+    double* device_xyz = nullptr;
+    check(cudaMalloc(&device_xyz, p.points.xyz.size() * sizeof(double)), "cudaMalloc points");
+    check(cudaMemcpy(device_xyz, p.points.xyz.data(), p.points.xyz.size() * sizeof(double), cudaMemcpyHostToDevice), "copy points");
+    std::vector<double> device_times;
+    std::int64_t neighbors = 0;
+    std::size_t peak = 0;
+    bool device_fits = true;
+    for (int r = 0; r < reps + 1 && device_fits; ++r) {
+      try {
+        SearchStats stats;
+        Stopwatch clock;
+        const DeviceNeighborList list = search_device(device_xyz, p.points.size(), 3, options, nullptr, &stats);
+        check(cudaDeviceSynchronize(), "sync");
+        if (r > 0) device_times.push_back(clock.lap());  // the first run warms up
+        neighbors = list.total();
+        peak = stats.peak_gpu_bytes;
+      } catch (const DeviceOutOfMemory& e) {
+        device_fits = false;
+        std::fprintf(stderr, "device-resident n=%d m=%g: %s\n", p.n, p.m, e.what());
+      }
+    }
+    cudaFree(device_xyz);
+
+    // Host -> host.
+    std::vector<double> host_times;
+    SearchStats host_stats;
+    for (int r = 0; r < std::max(1, reps - 1); ++r) {
+      Stopwatch clock;
+      const NeighborList list = search(p.points.view(), options, &host_stats);
+      host_times.push_back(clock.lap());
+      neighbors = list.total();
+      peak = std::max(peak, host_stats.peak_gpu_bytes);
+    }
+    const double host_s = median(host_times);
+    const double list_bytes = static_cast<double>(neighbors) * 4 + (n_points + 1) * 8;
+    const double copy_floor = n_points * 24 / bw.host_to_device + list_bytes / bw.device_to_host;
+    const double device_s = device_fits ? median(device_times) : 0.0;
+    const double device_floor = list_bytes / bw.device_write;
+
+    // openmp on every core of the GPU's host.
+    double openmp_s = 0;
+    if (p.n <= cpu_max_n) {
+      SearchOptions cpu = options;
+      cpu.backend = Backend::openmp;
+      Stopwatch clock;
+      const NeighborList list = search(p.points.view(), cpu);
+      openmp_s = clock.lap();
+      if (list.total() != neighbors) std::fprintf(stderr, "MISMATCH: openmp %lld vs cuda %lld\n",
+                                                  static_cast<long long>(list.total()), static_cast<long long>(neighbors));
+    }
+    std::printf("%s,%d,%zu,%g,%lld,%.5f,%.4g,%.5f,%.2f,%.4f,%.4g,%.4f,%.4f,%.4f,%.4f,%.2f,%.4f,%.4g,%.1f,%.2f\n",
+                p.name.c_str(), p.n, p.points.size(), p.m, static_cast<long long>(neighbors), device_s,
+                device_s > 0 ? n_points / device_s : 0.0, device_floor, device_s > 0 ? device_s / device_floor : 0.0,
+                host_s, n_points / host_s, host_stats.host_to_device_seconds, host_stats.kernel_seconds,
+                host_stats.device_to_host_seconds, copy_floor, host_s / copy_floor, openmp_s,
+                openmp_s > 0 ? n_points / openmp_s : 0.0, openmp_s > 0 ? openmp_s / host_s : 0.0,
+                static_cast<double>(peak) / (1 << 30));
+    std::fflush(stdout);
+  }
+  return 0;
+}

@@ -1,0 +1,60 @@
+#pragma once
+/// \file cuda.hpp
+/// The CUDA backend's device-resident entry point, for solvers that keep their points on the
+/// GPU: device coordinates in, device CSR out, on the caller's stream, no host round trip.
+/// This header needs no CUDA headers; it is usable (and throws) when built without CUDA.
+#include <cstdint>
+#include <memory>
+
+#include "horizon/error.hpp"
+#include "horizon/search.hpp"
+
+struct CUstream_st;
+
+namespace horizon {
+
+/// The same type as cudaStream_t; nullptr is the default stream.
+using cuda_stream = CUstream_st*;
+
+/// Thrown when the list does not fit in GPU memory; says how much it needs.
+class DeviceOutOfMemory : public Error {
+public:
+  DeviceOutOfMemory(const std::string& what, std::size_t needed, std::size_t available)
+      : Error(what), bytes_needed(needed), bytes_available(available) {}
+  std::size_t bytes_needed, bytes_available;
+};
+
+/// A neighbour list in GPU memory (CSR as in NeighborList), freed with the object.
+class DeviceNeighborList {
+public:
+  DeviceNeighborList() = default;
+  std::size_t size() const { return points_; }
+  std::int64_t total() const { return total_; }
+  const std::int64_t* offsets() const { return offsets_.get(); }  ///< size()+1 entries
+  const point_id* indices() const { return indices_.get(); }      ///< total() entries
+  /// Copies the list to the host.
+  NeighborList to_host(bool half) const;
+
+private:
+  friend DeviceNeighborList search_device(const double*, std::size_t, int, const SearchOptions&,
+                                          cuda_stream, SearchStats*);
+  struct Free {
+    void operator()(void* pointer) const;
+  };
+  std::unique_ptr<std::int64_t, Free> offsets_;
+  std::unique_ptr<point_id, Free> indices_;
+  std::size_t points_ = 0;
+  std::int64_t total_ = 0;
+};
+
+/// The neighbour list of `count` points whose AoS coordinates (x y [z], float64) are in GPU
+/// memory at `xyz`, computed on `stream` (of device options.device, which must be current).
+/// Throws DeviceOutOfMemory, naming the bytes needed, when the list does not fit.
+DeviceNeighborList search_device(const double* xyz, std::size_t count, int dims,
+                                 const SearchOptions& options, cuda_stream stream = nullptr,
+                                 SearchStats* stats = nullptr);
+
+/// Name of a CUDA device, or "" when there is none.
+std::string cuda_device_name(int device);
+
+}  // namespace horizon

@@ -1,0 +1,602 @@
+// The CUDA backend (thesis ch. 5, done the modern way): a binning step that sorts points by
+// cell with CUB radix sort and builds a cell start table, then the build step in two passes,
+// count -> exclusive scan -> fill, so no row has a fixed maximum and offsets are 64-bit.
+// Rows are sorted by id with CUB's segmented sort. The pair test is metric_accumulate(),
+// compiled with -fmad=false, so every decision matches the CPU backends bit for bit.
+#include <cub/cub.cuh>
+#include <thrust/iterator/counting_iterator.h>
+#include <thrust/iterator/transform_iterator.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <vector>
+
+#include "../backends.hpp"
+#include "device_memory.hpp"
+#include "horizon/cuda.hpp"
+#include "horizon/grid.hpp"
+#include "horizon/stopwatch.hpp"
+
+namespace horizon {
+namespace detail {
+namespace {
+
+constexpr int block_size = 256;
+
+unsigned blocks_for(std::size_t threads) {
+  return static_cast<unsigned>((threads + block_size - 1) / block_size);
+}
+
+void check_launch(const char* kernel) {
+  cuda_check(cudaGetLastError(), kernel, __FILE__, __LINE__);
+}
+
+// ---- Binning ------------------------------------------------------------------------------
+
+struct Box {
+  double lo[3], hi[3];
+};
+
+struct PointBox {
+  const double* xyz;
+  int dims;
+  __host__ __device__ Box operator()(std::int64_t i) const {
+    Box b{{0, 0, 0}, {0, 0, 0}};
+    for (int a = 0; a < dims; ++a) b.lo[a] = b.hi[a] = xyz[i * dims + a];
+    return b;
+  }
+};
+
+struct MergeBoxes {
+  __host__ __device__ Box operator()(const Box& a, const Box& b) const {
+    Box m;
+    for (int d = 0; d < 3; ++d) {
+      m.lo[d] = fmin(a.lo[d], b.lo[d]);
+      m.hi[d] = fmax(a.hi[d], b.hi[d]);
+    }
+    return m;
+  }
+};
+
+/// The grid's parameters, by value in every kernel.
+struct GridParams {
+  double origin[3];
+  double side;
+  std::int64_t cells[3];
+  int k, dims;
+  bool dense;
+
+  __device__ std::int64_t cell_of(double x, int axis) const {
+    return static_cast<std::int64_t>(floor((x - origin[axis]) / side)) + k;
+  }
+  __device__ std::int64_t linear(std::int64_t cx, std::int64_t cy, std::int64_t cz) const {
+    return cx + cells[0] * (cy + cells[1] * cz);
+  }
+};
+
+GridParams params_of(const Grid& g) {
+  GridParams p{};
+  for (int a = 0; a < 3; ++a) {
+    p.origin[a] = g.origin[a];
+    p.cells[a] = g.cells[a];
+  }
+  p.side = g.cell_side;
+  p.k = g.cells_per_horizon;
+  p.dims = g.dims;
+  p.dense = g.dense;
+  return p;
+}
+
+__global__ void cell_keys(const double* xyz, std::int64_t n, GridParams g, std::int64_t* linear,
+                          std::int64_t* kx, std::int64_t* ky, std::int64_t* kz, point_id* ids) {
+  const std::int64_t i = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
+  if (i >= n) return;
+  std::int64_t c[3] = {0, 0, 0};
+  for (int a = 0; a < g.dims; ++a) c[a] = g.cell_of(xyz[i * g.dims + a], a);
+  if (g.dense) {
+    linear[i] = g.linear(c[0], c[1], c[2]);
+  } else {
+    kx[i] = c[0];
+    ky[i] = c[1];
+    kz[i] = c[2];
+  }
+  ids[i] = static_cast<point_id>(i);
+}
+
+template <typename T>
+__global__ void gather(const T* from, const point_id* order, std::int64_t n, T* to) {
+  const std::int64_t p = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
+  if (p < n) to[p] = from[order[p]];
+}
+
+__global__ void gather_coords(const double* xyz, int dims, const point_id* order, std::int64_t n,
+                              double* x, double* y, double* z) {
+  const std::int64_t p = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
+  if (p >= n) return;
+  const std::int64_t i = order[p];
+  x[p] = xyz[i * dims];
+  y[p] = xyz[i * dims + 1];
+  z[p] = dims == 3 ? xyz[i * dims + 2] : 0.0;
+}
+
+template <typename T>
+__device__ std::int64_t lower_bound(const T* sorted, std::int64_t n, T value) {
+  std::int64_t lo = 0, hi = n;
+  while (lo < hi) {
+    const std::int64_t mid = (lo + hi) / 2;
+    if (sorted[mid] < value) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo;
+}
+
+// start[c] = first sorted position of a cell with linear id >= c.
+__global__ void cell_starts(const std::int64_t* sorted_keys, std::int64_t n, std::int64_t cells,
+                            std::int64_t* start) {
+  const std::int64_t c = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
+  if (c <= cells) start[c] = lower_bound(sorted_keys, n, c);
+}
+
+/// Points sorted by cell on the GPU: everything the build kernels read, by value.
+struct DeviceIndexView {
+  GridParams grid;
+  std::int64_t n;
+  const double *x, *y, *z;
+  const point_id* order;
+  const std::int64_t* start;              // dense: linear id -> first sorted position
+  const std::int64_t *kx, *ky, *kz;       // sparse: sorted cell coordinates per point
+
+  // Sorted positions of the cells (cx-k .. cx+k, cy, cz).
+  __device__ void row(std::int64_t cx, std::int64_t cy, std::int64_t cz, std::int64_t& begin,
+                      std::int64_t& end) const {
+    const int k = grid.k;
+    if (grid.dense) {
+      begin = start[grid.linear(cx - k, cy, cz)];
+      end = start[grid.linear(cx + k, cy, cz) + 1];
+      return;
+    }
+    begin = sparse_bound(cz, cy, cx - k);
+    end = sparse_bound(cz, cy, cx + k + 1);
+  }
+  // First sorted position whose (kz, ky, kx) is not below (cz, cy, cx).
+  __device__ std::int64_t sparse_bound(std::int64_t cz, std::int64_t cy, std::int64_t cx) const {
+    std::int64_t lo = 0, hi = n;
+    while (lo < hi) {
+      const std::int64_t mid = (lo + hi) / 2;
+      const bool below = kz[mid] < cz || (kz[mid] == cz && (ky[mid] < cy || (ky[mid] == cy && kx[mid] < cx)));
+      if (below) lo = mid + 1;
+      else hi = mid;
+    }
+    return lo;
+  }
+};
+
+class DeviceIndex {
+public:
+  DeviceIndex(const double* xyz, std::size_t count, int dims, const SearchOptions& options,
+              cudaStream_t stream, MemoryMeter& meter)
+      : n_(static_cast<std::int64_t>(count)), x_(count, meter), y_(count, meter), z_(count, meter),
+        order_(count, meter), start_(0, meter), kx_(0, meter), ky_(0, meter), kz_(0, meter) {
+    grid_ = Grid::from_bounds(reduce_bounds(xyz, count, dims, stream, meter), dims, count, options.horizon,
+                              options.cells_per_horizon);
+    const GridParams g = params_of(grid_);
+    DeviceArray<point_id> ids(count, meter), ids_sorted(count, meter);
+    if (g.dense) {
+      DeviceArray<std::int64_t> keys(count, meter), sorted(count, meter);
+      cell_keys<<<blocks_for(count), block_size, 0, stream>>>(xyz, n_, g, keys.get(), nullptr, nullptr, nullptr, ids.get());
+      check_launch("cell_keys");
+      const auto cells = static_cast<std::int64_t>(grid_.cell_count());
+      int bits = 1;
+      while ((std::int64_t{1} << bits) <= cells) ++bits;
+      sort_pairs(keys.get(), sorted.get(), ids.get(), order_.get(), bits, stream, meter);
+      start_ = DeviceArray<std::int64_t>(static_cast<std::size_t>(cells) + 1, meter);
+      cell_starts<<<blocks_for(static_cast<std::size_t>(cells) + 1), block_size, 0, stream>>>(
+          sorted.get(), n_, cells, start_.get());
+      check_launch("cell_starts");
+    } else {
+      sort_sparse(xyz, g, ids, ids_sorted, stream, meter);
+    }
+    gather_coords<<<blocks_for(count), block_size, 0, stream>>>(xyz, dims, order_.get(), n_, x_.get(), y_.get(), z_.get());
+    check_launch("gather_coords");
+  }
+
+  DeviceIndexView view() const {
+    return {params_of(grid_), n_, x_.get(), y_.get(), z_.get(), order_.get(), start_.get(),
+            kx_.get(), ky_.get(), kz_.get()};
+  }
+
+private:
+  static Bounds reduce_bounds(const double* xyz, std::size_t count, int dims, cudaStream_t stream,
+                              MemoryMeter& meter);
+  void sort_pairs(const std::int64_t* keys, std::int64_t* sorted, const point_id* ids,
+                  point_id* ids_sorted, int bits, cudaStream_t stream, MemoryMeter& meter) const;
+  void sort_sparse(const double* xyz, const GridParams& g, DeviceArray<point_id>& ids,
+                   DeviceArray<point_id>& ids_sorted, cudaStream_t stream, MemoryMeter& meter);
+
+  std::int64_t n_;
+  Grid grid_;
+  DeviceArray<double> x_, y_, z_;
+  DeviceArray<point_id> order_;
+  DeviceArray<std::int64_t> start_, kx_, ky_, kz_;
+};
+
+Bounds DeviceIndex::reduce_bounds(const double* xyz, std::size_t count, int dims,
+                                  cudaStream_t stream, MemoryMeter& meter) {
+  // The reduction starts from the first point's box (zeros in unused axes).
+  double first[3] = {0, 0, 0};
+  HORIZON_CUDA_CHECK(cudaMemcpyAsync(first, xyz, dims * sizeof(double), cudaMemcpyDeviceToHost, stream));
+  HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
+  const Box init{{first[0], first[1], first[2]}, {first[0], first[1], first[2]}};
+  const auto boxes = thrust::make_transform_iterator(thrust::counting_iterator<std::int64_t>(0), PointBox{xyz, dims});
+  DeviceArray<Box> result(1, meter);
+  std::size_t temp_bytes = 0;
+  HORIZON_CUDA_CHECK(cub::DeviceReduce::Reduce(nullptr, temp_bytes, boxes, result.get(),
+                                               static_cast<std::int64_t>(count), MergeBoxes(), init, stream));
+  DeviceArray<char> temp(temp_bytes, meter);
+  HORIZON_CUDA_CHECK(cub::DeviceReduce::Reduce(temp.get(), temp_bytes, boxes, result.get(),
+                                               static_cast<std::int64_t>(count), MergeBoxes(), init, stream));
+  Box box;
+  HORIZON_CUDA_CHECK(cudaMemcpyAsync(&box, result.get(), sizeof(Box), cudaMemcpyDeviceToHost, stream));
+  HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
+  Bounds bounds;
+  for (int a = 0; a < 3; ++a) {
+    bounds.lo[a] = box.lo[a];
+    bounds.hi[a] = box.hi[a];
+  }
+  return bounds;
+}
+
+void DeviceIndex::sort_pairs(const std::int64_t* keys, std::int64_t* sorted, const point_id* ids,
+                             point_id* ids_sorted, int bits, cudaStream_t stream,
+                             MemoryMeter& meter) const {
+  std::size_t temp_bytes = 0;
+  HORIZON_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, temp_bytes, keys, sorted, ids, ids_sorted,
+                                                     n_, 0, bits, stream));
+  DeviceArray<char> temp(temp_bytes, meter);
+  HORIZON_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(temp.get(), temp_bytes, keys, sorted, ids, ids_sorted,
+                                                     n_, 0, bits, stream));
+}
+
+// Sparse grids: three stable radix sorts, by x, then y, then z cell coordinate, give the
+// lexicographic (z, y, x) order without ever forming a linear id that could overflow.
+void DeviceIndex::sort_sparse(const double* xyz, const GridParams& g, DeviceArray<point_id>& ids,
+                              DeviceArray<point_id>& ids_sorted, cudaStream_t stream,
+                              MemoryMeter& meter) {
+  const auto count = static_cast<std::size_t>(n_);
+  DeviceArray<std::int64_t> kx(count, meter), ky(count, meter), kz(count, meter);
+  DeviceArray<std::int64_t> gathered(count, meter), sorted(count, meter);
+  cell_keys<<<blocks_for(count), block_size, 0, stream>>>(xyz, n_, g, nullptr, kx.get(), ky.get(), kz.get(), ids.get());
+  check_launch("cell_keys");
+  const std::int64_t* by_axis[3] = {kx.get(), ky.get(), kz.get()};
+  for (int a = 0; a < 3; ++a) {
+    gather<<<blocks_for(count), block_size, 0, stream>>>(by_axis[a], ids.get(), n_, gathered.get());
+    check_launch("gather");
+    int bits = 1;
+    while ((std::int64_t{1} << bits) <= g.cells[a]) ++bits;
+    sort_pairs(gathered.get(), sorted.get(), ids.get(), ids_sorted.get(), bits, stream, meter);
+    std::swap(ids, ids_sorted);
+  }
+  HORIZON_CUDA_CHECK(cudaMemcpyAsync(order_.get(), ids.get(), count * sizeof(point_id), cudaMemcpyDeviceToDevice, stream));
+  kx_ = DeviceArray<std::int64_t>(count, meter);
+  ky_ = DeviceArray<std::int64_t>(count, meter);
+  kz_ = DeviceArray<std::int64_t>(count, meter);
+  DeviceArray<std::int64_t>* sorted_axes[3] = {&kx_, &ky_, &kz_};
+  for (int a = 0; a < 3; ++a) {
+    gather<<<blocks_for(count), block_size, 0, stream>>>(by_axis[a], order_.get(), n_, sorted_axes[a]->get());
+    check_launch("gather");
+  }
+}
+
+// ---- Build ---------------------------------------------------------------------------------
+
+/// One thread per point in sorted order, so a warp's points share most of their candidates.
+/// Counting writes counts[id] = |family|; filling writes the family of each point whose id is
+/// in [first_id, last_id) at out[offsets[id] - base].
+template <Metric M, int D, bool Half, bool Fill>
+__global__ void families(DeviceIndexView ix, double threshold, std::int64_t* counts,
+                         const std::int64_t* offsets, point_id* out, point_id first_id,
+                         point_id last_id, std::int64_t base) {
+  const std::int64_t p = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
+  if (p >= ix.n) return;
+  const point_id self = ix.order[p];
+  if (Fill && (self < first_id || self >= last_id)) return;
+  const double xi = ix.x[p], yi = ix.y[p], zi = ix.z[p];
+  const std::int64_t cx = ix.grid.cell_of(xi, 0), cy = ix.grid.cell_of(yi, 1);
+  const std::int64_t cz = D == 3 ? ix.grid.cell_of(zi, 2) : 0;
+  const int k = ix.grid.k, reach_z = D == 3 ? k : 0;
+  point_id* row = Fill ? out + (offsets[self] - base) : nullptr;
+  std::int64_t found = 0;
+  for (int dz = -reach_z; dz <= reach_z; ++dz)
+    for (int dy = -k; dy <= k; ++dy) {
+      std::int64_t begin, end;
+      ix.row(cx, cy + dy, cz + dz, begin, end);
+      for (std::int64_t q = begin; q < end; ++q) {
+        const double d = metric_accumulate<M>(xi - ix.x[q], yi - ix.y[q], D == 3 ? zi - ix.z[q] : 0.0);
+        const point_id other = ix.order[q];
+        const bool keep = Half ? other > self : q != p;
+        if (d < threshold && keep) {
+          if (Fill) row[found] = other;
+          ++found;
+        }
+      }
+    }
+  if (!Fill) counts[self] = found;
+}
+
+template <bool Fill, Metric M, int D>
+void launch_half(const DeviceIndexView& ix, const SearchOptions& o, std::int64_t* counts,
+                 const std::int64_t* offsets, point_id* out, point_id first, point_id last,
+                 std::int64_t base, cudaStream_t stream) {
+  const double threshold = metric_threshold(M, o.horizon);
+  const unsigned blocks = blocks_for(static_cast<std::size_t>(ix.n));
+  if (o.half)
+    families<M, D, true, Fill><<<blocks, block_size, 0, stream>>>(ix, threshold, counts, offsets, out, first, last, base);
+  else
+    families<M, D, false, Fill><<<blocks, block_size, 0, stream>>>(ix, threshold, counts, offsets, out, first, last, base);
+  check_launch(Fill ? "families<fill>" : "families<count>");
+}
+
+template <bool Fill, Metric M>
+void launch_dims(const DeviceIndexView& ix, const SearchOptions& o, std::int64_t* counts,
+                 const std::int64_t* offsets, point_id* out, point_id first, point_id last,
+                 std::int64_t base, cudaStream_t stream) {
+  if (ix.grid.dims == 3)
+    launch_half<Fill, M, 3>(ix, o, counts, offsets, out, first, last, base, stream);
+  else
+    launch_half<Fill, M, 2>(ix, o, counts, offsets, out, first, last, base, stream);
+}
+
+template <bool Fill>
+void launch_families(const DeviceIndexView& ix, const SearchOptions& o, std::int64_t* counts,
+                     const std::int64_t* offsets, point_id* out, point_id first, point_id last,
+                     std::int64_t base, cudaStream_t stream) {
+  switch (o.metric) {
+    case Metric::euclidean: return launch_dims<Fill, Metric::euclidean>(ix, o, counts, offsets, out, first, last, base, stream);
+    case Metric::manhattan: return launch_dims<Fill, Metric::manhattan>(ix, o, counts, offsets, out, first, last, base, stream);
+    case Metric::chebyshev: return launch_dims<Fill, Metric::chebyshev>(ix, o, counts, offsets, out, first, last, base, stream);
+  }
+}
+
+/// Row offsets by id: count each family, then an inclusive scan into offsets[1..n].
+DeviceArray<std::int64_t> count_offsets(const DeviceIndex& index, const SearchOptions& options,
+                                        std::size_t count, cudaStream_t stream, MemoryMeter& meter,
+                                        std::int64_t& total) {
+  DeviceArray<std::int64_t> counts(count, meter), offsets(count + 1, meter);
+  launch_families<false>(index.view(), options, counts.get(), nullptr, nullptr, 0, 0, 0, stream);
+  HORIZON_CUDA_CHECK(cudaMemsetAsync(offsets.get(), 0, sizeof(std::int64_t), stream));
+  std::size_t temp_bytes = 0;
+  HORIZON_CUDA_CHECK(cub::DeviceScan::InclusiveSum(nullptr, temp_bytes, counts.get(), offsets.get() + 1,
+                                                   static_cast<std::int64_t>(count), stream));
+  DeviceArray<char> temp(temp_bytes, meter);
+  HORIZON_CUDA_CHECK(cub::DeviceScan::InclusiveSum(temp.get(), temp_bytes, counts.get(), offsets.get() + 1,
+                                                   static_cast<std::int64_t>(count), stream));
+  HORIZON_CUDA_CHECK(cudaMemcpyAsync(&total, offsets.get() + count, sizeof(total), cudaMemcpyDeviceToHost, stream));
+  HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
+  return offsets;
+}
+
+struct MinusBase {
+  std::int64_t base;
+  __host__ __device__ std::int64_t operator()(std::int64_t offset) const { return offset - base; }
+};
+
+/// Bytes of scratch the segmented sort of `entries` entries in `rows` rows needs.
+std::size_t sort_scratch_bytes(std::int64_t entries, std::int64_t rows, const std::int64_t* offsets) {
+  std::size_t bytes = 0;
+  const auto begins = thrust::make_transform_iterator(offsets, MinusBase{0});
+  cub::DoubleBuffer<point_id> keys(nullptr, nullptr);
+  HORIZON_CUDA_CHECK(cub::DeviceSegmentedSort::SortKeys(nullptr, bytes, keys, entries, rows, begins, begins + 1));
+  return bytes;
+}
+
+/// Fills and sorts the rows of ids [first, last): their entries go to rows_out, which holds
+/// offsets[last] - offsets[first] entries; `spare` is as large (the sort's second buffer).
+/// Returns the buffer that holds the result.
+point_id* fill_rows(const DeviceIndex& index, const SearchOptions& options, const std::int64_t* offsets,
+                    std::int64_t base, std::int64_t entries, point_id first, point_id last,
+                    point_id* rows_out, point_id* spare, cudaStream_t stream, MemoryMeter& meter) {
+  launch_families<true>(index.view(), options, nullptr, offsets, rows_out, first, last, base, stream);
+  if (!options.sort_rows || entries == 0) return rows_out;
+  const auto begins = thrust::make_transform_iterator(offsets + first, MinusBase{base});
+  cub::DoubleBuffer<point_id> keys(rows_out, spare);
+  std::size_t temp_bytes = 0;
+  HORIZON_CUDA_CHECK(cub::DeviceSegmentedSort::SortKeys(nullptr, temp_bytes, keys, entries, last - first,
+                                                        begins, begins + 1, stream));
+  DeviceArray<char> temp(temp_bytes, meter);
+  HORIZON_CUDA_CHECK(cub::DeviceSegmentedSort::SortKeys(temp.get(), temp_bytes, keys, entries, last - first,
+                                                        begins, begins + 1, stream));
+  return keys.Current();
+}
+
+std::size_t free_device_bytes() {
+  std::size_t free = 0, total = 0;
+  HORIZON_CUDA_CHECK(cudaMemGetInfo(&free, &total));
+  return free;
+}
+
+void select_device(int device) {
+  int count = 0;
+  if (cudaGetDeviceCount(&count) != cudaSuccess || device >= count)
+    throw Error("CUDA device " + std::to_string(device) + " does not exist (" +
+                std::to_string(count) + " visible)");
+  HORIZON_CUDA_CHECK(cudaSetDevice(device));
+}
+
+/// Device-to-host copy through two pinned staging buffers: the GPU fills one while the CPU
+/// empties the other, so a pageable destination still sees close to pinned bandwidth.
+void copy_to_host(void* host, const void* device, std::size_t bytes, cudaStream_t stream) {
+  constexpr std::size_t chunk = std::size_t{64} << 20;
+  if (bytes <= chunk) {
+    HORIZON_CUDA_CHECK(cudaMemcpyAsync(host, device, bytes, cudaMemcpyDeviceToHost, stream));
+    HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
+    return;
+  }
+  void* staging[2];
+  cudaEvent_t copied[2];
+  HORIZON_CUDA_CHECK(cudaMallocHost(&staging[0], 2 * chunk));
+  staging[1] = static_cast<char*>(staging[0]) + chunk;
+  for (auto& e : copied) HORIZON_CUDA_CHECK(cudaEventCreateWithFlags(&e, cudaEventDisableTiming));
+  const std::size_t chunks = (bytes + chunk - 1) / chunk;
+  auto issue = [&](std::size_t c) {
+    const std::size_t at = c * chunk, size = std::min(chunk, bytes - at);
+    HORIZON_CUDA_CHECK(cudaMemcpyAsync(staging[c % 2], static_cast<const char*>(device) + at, size,
+                                       cudaMemcpyDeviceToHost, stream));
+    HORIZON_CUDA_CHECK(cudaEventRecord(copied[c % 2], stream));
+  };
+  issue(0);
+  for (std::size_t c = 0; c < chunks; ++c) {
+    if (c + 1 < chunks) issue(c + 1);
+    HORIZON_CUDA_CHECK(cudaEventSynchronize(copied[c % 2]));
+    const std::size_t at = c * chunk, size = std::min(chunk, bytes - at);
+    std::memcpy(static_cast<char*>(host) + at, staging[c % 2], size);
+  }
+  for (auto& e : copied) cudaEventDestroy(e);
+  cudaFreeHost(staging[0]);
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+bool cuda_usable() {
+  int count = 0;
+  return cudaGetDeviceCount(&count) == cudaSuccess && count > 0;
+}
+
+// Host arrays in, host CSR out. When the list does not fit on the GPU it is built in batches
+// of rows, each filled, sorted and copied back before the next.
+NeighborList search_cuda(PointView points, const SearchOptions& options, SearchStats& stats) {
+  select_device(options.device);
+  stats.gpu_name = cuda_device_name(options.device);
+  stats.threads = 1;
+  const std::size_t n = points.size();
+  const int dims = points.dims();
+  MemoryMeter meter;
+  cudaStream_t stream;
+  HORIZON_CUDA_CHECK(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking));
+  struct StreamGuard {
+    cudaStream_t s;
+    ~StreamGuard() { cudaStreamDestroy(s); }
+  } guard{stream};
+
+  auto clock = std::chrono::steady_clock::now();
+  std::vector<double> promoted;
+  if (points.is_float32()) {
+    promoted.resize(n * static_cast<std::size_t>(dims));
+    for (std::size_t i = 0; i < n; ++i)
+      for (int a = 0; a < dims; ++a) promoted[i * dims + a] = points(i, a);
+  }
+  const double* host_xyz = points.is_float32() ? promoted.data() : points.float64_data();
+  DeviceArray<double> xyz(n * static_cast<std::size_t>(dims), meter);
+  HORIZON_CUDA_CHECK(cudaMemcpyAsync(xyz.get(), host_xyz, xyz.bytes(), cudaMemcpyHostToDevice, stream));
+  HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
+  stats.host_to_device_seconds = seconds_since(clock);
+
+  clock = std::chrono::steady_clock::now();
+  const DeviceIndex index(xyz.get(), n, dims, options, stream, meter);
+  HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
+  stats.grid_seconds = seconds_since(clock);
+  xyz.reset();
+
+  auto kernels = std::chrono::steady_clock::now();
+  std::int64_t total = 0;
+  DeviceArray<std::int64_t> offsets = count_offsets(index, options, n, stream, meter, total);
+  std::vector<std::int64_t> host_offsets(n + 1);
+  HORIZON_CUDA_CHECK(cudaMemcpyAsync(host_offsets.data(), offsets.get(), offsets.bytes(), cudaMemcpyDeviceToHost, stream));
+  HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
+  std::vector<point_id> indices(static_cast<std::size_t>(total));
+
+  // Batches of rows sized to what is free: two list buffers plus the sort's scratch.
+  const std::size_t free = free_device_bytes();
+  const std::size_t usable = free > (std::size_t{256} << 20) ? free - (std::size_t{256} << 20) : free / 2;
+  const std::int64_t fits = std::max<std::int64_t>(1, static_cast<std::int64_t>(usable / (3 * sizeof(point_id))));
+  const std::int64_t batch_entries = options.gpu_batch_entries > 0 ? std::min(fits, options.gpu_batch_entries) : fits;
+  double copy_seconds = 0;
+  for (std::size_t first = 0; first < n;) {
+    std::size_t last = first;
+    // Rows up to the batch's size (a single larger row still goes alone).
+    const std::int64_t limit = host_offsets[first] + batch_entries;
+    last = static_cast<std::size_t>(std::upper_bound(host_offsets.begin() + first + 1, host_offsets.end(), limit) -
+                                    host_offsets.begin()) - 1;
+    last = std::max(last, first + 1);
+    const std::int64_t base = host_offsets[first], entries = host_offsets[last] - base;
+    DeviceArray<point_id> rows(static_cast<std::size_t>(entries), meter);
+    DeviceArray<point_id> spare(options.sort_rows ? static_cast<std::size_t>(entries) : 0, meter);
+    const point_id* result = fill_rows(index, options, offsets.get(), base, entries, static_cast<point_id>(first),
+                                       static_cast<point_id>(last), rows.get(), spare.get(), stream, meter);
+    HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
+    const auto copy_start = std::chrono::steady_clock::now();
+    copy_to_host(indices.data() + base, result, static_cast<std::size_t>(entries) * sizeof(point_id), stream);
+    copy_seconds += seconds_since(copy_start);
+    first = last;
+  }
+  stats.device_to_host_seconds = copy_seconds;
+  stats.kernel_seconds = seconds_since(kernels) - copy_seconds;
+  stats.search_seconds = stats.kernel_seconds + copy_seconds;
+  stats.peak_gpu_bytes = meter.peak;
+  return NeighborList(std::move(host_offsets), std::move(indices), options.half);
+}
+
+}  // namespace detail
+
+void DeviceNeighborList::Free::operator()(void* pointer) const { cudaFree(pointer); }
+
+NeighborList DeviceNeighborList::to_host(bool half) const {
+  std::vector<std::int64_t> offsets(points_ + 1, 0);
+  std::vector<point_id> indices(static_cast<std::size_t>(total_));
+  if (offsets_) detail::copy_to_host(offsets.data(), offsets_.get(), offsets.size() * sizeof(std::int64_t), nullptr);
+  if (total_) detail::copy_to_host(indices.data(), indices_.get(), indices.size() * sizeof(point_id), nullptr);
+  return NeighborList(std::move(offsets), std::move(indices), half);
+}
+
+DeviceNeighborList search_device(const double* xyz, std::size_t count, int dims,
+                                 const SearchOptions& options, cuda_stream stream, SearchStats* stats) {
+  validate_horizon(options.horizon, options.cells_per_horizon);
+  if (dims != 2 && dims != 3) throw Error("points must have 2 or 3 coordinates, not " + std::to_string(dims));
+  DeviceNeighborList list;
+  list.points_ = count;
+  detail::MemoryMeter meter;
+  detail::DeviceArray<std::int64_t> offsets(count + 1, meter);
+  if (count == 0) {
+    HORIZON_CUDA_CHECK(cudaMemsetAsync(offsets.get(), 0, sizeof(std::int64_t), stream));
+    list.offsets_.reset(offsets.release());
+    return list;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const detail::DeviceIndex index(xyz, count, dims, options, stream, meter);
+  offsets = detail::count_offsets(index, options, count, stream, meter, list.total_);
+
+  const std::size_t list_bytes = static_cast<std::size_t>(list.total_) * sizeof(point_id);
+  const std::size_t needed = (options.sort_rows ? 2 : 1) * list_bytes +
+                             detail::sort_scratch_bytes(list.total_, static_cast<std::int64_t>(count), offsets.get());
+  const std::size_t free = detail::free_device_bytes();
+  if (needed > free)
+    throw DeviceOutOfMemory("the neighbour list needs " + std::to_string(needed) + " bytes of GPU memory, " +
+                                std::to_string(free) + " are free (the host API builds it in batches)",
+                            needed, free);
+  detail::DeviceArray<point_id> rows(static_cast<std::size_t>(list.total_), meter);
+  detail::DeviceArray<point_id> spare(options.sort_rows ? static_cast<std::size_t>(list.total_) : 0, meter);
+  point_id* result = detail::fill_rows(index, options, offsets.get(), 0, list.total_, 0,
+                                       static_cast<point_id>(count), rows.get(), spare.get(), stream, meter);
+  list.indices_.reset(result == rows.get() ? rows.release() : spare.release());
+  list.offsets_.reset(offsets.release());
+  if (stats) {
+    HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
+    stats->backend = Backend::cuda;
+    stats->search_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats->kernel_seconds = stats->search_seconds;
+    stats->peak_gpu_bytes = meter.peak;
+  }
+  return list;
+}
+
+std::string cuda_device_name(int device) {
+  cudaDeviceProp properties;
+  if (cudaGetDeviceProperties(&properties, device) != cudaSuccess) return "";
+  return properties.name;
+}
+
+}  // namespace horizon
