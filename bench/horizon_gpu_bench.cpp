@@ -72,12 +72,16 @@ int main(int argc, char** argv) {
   std::vector<int> sizes{50, 100, 150, 200, 250, 300, 350, 400};
   std::vector<double> spacings{1.5, 3.015};
   std::size_t cloud_points = 8000000;
-  int reps = 3, cpu_max_n = 400;
+  int reps = 3, cpu_max_n = 400, k = 1;
+  bool unsorted = false, host = true;
   app.add_option("--sizes", sizes, "lattice points per side")->delimiter(',');
   app.add_option("--m", spacings, "horizons in lattice spacings")->delimiter(',');
   app.add_option("--cloud-points", cloud_points, "points in the random and clustered clouds (0: none)");
   app.add_option("--reps", reps, "repetitions of the GPU timings (median)");
   app.add_option("--cpu-max-n", cpu_max_n, "largest lattice also timed with openmp");
+  app.add_option("--k", k, "cells per horizon");
+  app.add_flag("--unsorted", unsorted, "leave rows unsorted");
+  app.add_flag("!--no-host", host, "skip the host->host and openmp timings");
   CLI11_PARSE(app, argc, argv);
 
   const Bandwidth bw = measure_bandwidth();
@@ -111,6 +115,8 @@ int main(int argc, char** argv) {
     SearchOptions options;
     options.horizon = p.horizon;
     options.backend = Backend::cuda;
+    options.cells_per_horizon = k;
+    options.sort_rows = !unsorted;
 
     // Device-resident: points already on the GPU, list left on the GPU.
     double* device_xyz = nullptr;
@@ -127,6 +133,8 @@ int main(int argc, char** argv) {
         const DeviceNeighborList list = search_device(device_xyz, p.points.size(), 3, options, nullptr, &stats);
         check(cudaDeviceSynchronize(), "sync");
         if (r > 0) device_times.push_back(clock.lap());  // the first run warms up
+        if (r == reps) std::fprintf(stderr, "n=%d m=%g k=%d: device index %.4f s, build %.4f s\n", p.n, p.m, k,
+                                    stats.grid_seconds, stats.search_seconds);
         neighbors = list.total();
         peak = stats.peak_gpu_bytes;
       } catch (const DeviceOutOfMemory& e) {
@@ -139,14 +147,14 @@ int main(int argc, char** argv) {
     // Host -> host.
     std::vector<double> host_times;
     SearchStats host_stats;
-    for (int r = 0; r < std::max(1, reps - 1); ++r) {
+    for (int r = 0; r < (host ? std::max(1, reps - 1) : 0); ++r) {
       Stopwatch clock;
       const NeighborList list = search(p.points.view(), options, &host_stats);
       host_times.push_back(clock.lap());
       neighbors = list.total();
       peak = std::max(peak, host_stats.peak_gpu_bytes);
     }
-    const double host_s = median(host_times);
+    const double host_s = host ? median(host_times) : 0.0;
     const double list_bytes = static_cast<double>(neighbors) * 4 + (n_points + 1) * 8;
     const double copy_floor = n_points * 24 / bw.host_to_device + list_bytes / bw.device_to_host;
     const double device_s = device_fits ? median(device_times) : 0.0;
@@ -154,7 +162,7 @@ int main(int argc, char** argv) {
 
     // openmp on every core of the GPU's host.
     double openmp_s = 0;
-    if (p.n <= cpu_max_n) {
+    if (host && p.n <= cpu_max_n) {
       SearchOptions cpu = options;
       cpu.backend = Backend::openmp;
       Stopwatch clock;
@@ -166,8 +174,8 @@ int main(int argc, char** argv) {
     std::printf("%s,%d,%zu,%g,%lld,%.5f,%.4g,%.5f,%.2f,%.4f,%.4g,%.4f,%.4f,%.4f,%.4f,%.2f,%.4f,%.4g,%.1f,%.2f\n",
                 p.name.c_str(), p.n, p.points.size(), p.m, static_cast<long long>(neighbors), device_s,
                 device_s > 0 ? n_points / device_s : 0.0, device_floor, device_s > 0 ? device_s / device_floor : 0.0,
-                host_s, n_points / host_s, host_stats.host_to_device_seconds, host_stats.kernel_seconds,
-                host_stats.device_to_host_seconds, copy_floor, host_s / copy_floor, openmp_s,
+                host_s, host_s > 0 ? n_points / host_s : 0.0, host_stats.host_to_device_seconds, host_stats.kernel_seconds,
+                host_stats.device_to_host_seconds, copy_floor, host_s > 0 ? host_s / copy_floor : 0.0, openmp_s,
                 openmp_s > 0 ? n_points / openmp_s : 0.0, openmp_s > 0 ? openmp_s / host_s : 0.0,
                 static_cast<double>(peak) / (1 << 30));
     std::fflush(stdout);

@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "horizon/buffer.hpp"
 #include "horizon/points.hpp"
 
 namespace horizon {
@@ -14,7 +15,7 @@ namespace horizon {
 class NeighborList {
 public:
   NeighborList() : offsets_(1, 0) {}
-  NeighborList(std::vector<std::int64_t> offsets, std::vector<point_id> indices, bool half)
+  NeighborList(Buffer<std::int64_t> offsets, Buffer<point_id> indices, bool half)
       : offsets_(std::move(offsets)), indices_(std::move(indices)), half_(half) {}
 
   /// Number of rows (points).
@@ -32,14 +33,14 @@ public:
   }
 
   /// CSR arrays: offsets has size()+1 entries, indices has total().
-  const std::vector<std::int64_t>& offsets() const { return offsets_; }
-  const std::vector<point_id>& indices() const { return indices_; }
+  const Buffer<std::int64_t>& offsets() const { return offsets_; }
+  const Buffer<point_id>& indices() const { return indices_; }
 
   friend bool operator==(const NeighborList&, const NeighborList&) = default;
 
 private:
-  std::vector<std::int64_t> offsets_;
-  std::vector<point_id> indices_;
+  Buffer<std::int64_t> offsets_;
+  Buffer<point_id> indices_;
   bool half_ = false;
 };
 

@@ -42,13 +42,13 @@ NeighborList search_openmp(PointView points, const SearchOptions& options, Searc
   stats.grid_seconds = clock.lap();
 
   const std::vector<CellRun> runs = split_into_runs(index, threads);
-  std::vector<std::int64_t> offsets(points.size() + 1, 0);
+  Buffer<std::int64_t> offsets(points.size() + 1, 0);
   const auto run_count = static_cast<std::int64_t>(runs.size());
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
   for (std::int64_t r = 0; r < run_count; ++r) count_families(index, options, runs[r], offsets.data());
 
   std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
-  std::vector<point_id> indices(static_cast<std::size_t>(offsets.back()));
+  Buffer<point_id> indices(static_cast<std::size_t>(offsets.back()));
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
   for (std::int64_t r = 0; r < run_count; ++r)
     fill_families(index, options, runs[r], offsets.data(), indices.data());

@@ -15,12 +15,12 @@ NeighborList search_serial(PointView points, const SearchOptions& options, Searc
 
   // 2. Count each family: test every point against the points of its cell's stencil.
   const CellRun all{0, index.occupied_cells()};
-  std::vector<std::int64_t> offsets(points.size() + 1, 0);
+  Buffer<std::int64_t> offsets(points.size() + 1, 0);
   count_families(index, options, all, offsets.data());
 
   // 3. Family sizes become row offsets; a second pass writes each row in its place.
   std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
-  std::vector<point_id> indices(static_cast<std::size_t>(offsets.back()));
+  Buffer<point_id> indices(static_cast<std::size_t>(offsets.back()));
   fill_families(index, options, all, offsets.data(), indices.data());
   stats.search_seconds = clock.lap();
   stats.backend = Backend::serial;

@@ -29,8 +29,8 @@ std::vector<point_id> brute_force_family(PointView points, std::size_t i,
 }
 
 NeighborList brute_force(PointView points, const SearchOptions& options) {
-  std::vector<std::int64_t> offsets{0};
-  std::vector<point_id> indices;
+  Buffer<std::int64_t> offsets{0};
+  Buffer<point_id> indices;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const auto family = brute_force_family(points, i, options);
     indices.insert(indices.end(), family.begin(), family.end());

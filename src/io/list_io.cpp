@@ -37,7 +37,7 @@ void write_csv(const std::string& path, const NeighborList& list) {
 NeighborList read_csv(const std::string& path, std::size_t points, bool half) {
   std::ifstream in(path);
   if (!in) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
-  std::vector<std::int64_t> offsets(points + 1, 0);
+  Buffer<std::int64_t> offsets(points + 1, 0);
   std::vector<std::pair<std::int64_t, std::int64_t>> pairs;
   std::string line;
   for (std::size_t number = 1; std::getline(in, line); ++number) {
@@ -58,15 +58,15 @@ NeighborList read_csv(const std::string& path, std::size_t points, bool half) {
     ++offsets[static_cast<std::size_t>(i) + 1];
   }
   for (std::size_t i = 0; i < points; ++i) offsets[i + 1] += offsets[i];
-  std::vector<point_id> indices;
+  Buffer<point_id> indices;
   indices.reserve(pairs.size());
   for (const auto& [i, j] : pairs) indices.push_back(static_cast<point_id>(j));
   return NeighborList(std::move(offsets), std::move(indices), half);
 }
 
 template <typename T>
-std::vector<T> values_of(const detail::NpyArray& array) {
-  std::vector<T> out(array.elements());
+Buffer<T> values_of(const detail::NpyArray& array) {
+  Buffer<T> out(array.elements());
   if (array.type == "i8") {
     for (std::size_t e = 0; e < out.size(); ++e) {
       std::int64_t v;
@@ -100,7 +100,7 @@ NeighborList read_npy_list(const std::string& prefix, std::size_t points, bool h
     throw Error(offsets_path + ": offsets do not span " + indices_path);
   for (std::size_t i = 0; i < points; ++i)
     if (offsets[i + 1] < offsets[i]) throw Error(offsets_path + ": offsets decrease at row " + std::to_string(i));
-  std::vector<point_id> indices(raw.size());
+  Buffer<point_id> indices(raw.size());
   for (std::size_t e = 0; e < raw.size(); ++e) {
     if (raw[e] < 0 || static_cast<std::size_t>(raw[e]) >= points)
       throw Error(indices_path + ": entry " + std::to_string(e) + " is not a point id");

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <vector>
 
+#include "../../core/parallel_copy.hpp"
 #include "../backends.hpp"
 #include "device_memory.hpp"
 #include "horizon/cuda.hpp"
@@ -423,8 +424,8 @@ void select_device(int device) {
   HORIZON_CUDA_CHECK(cudaSetDevice(device));
 }
 
-/// Device-to-host copy through two pinned staging buffers: the GPU fills one while the CPU
-/// empties the other, so a pageable destination still sees close to pinned bandwidth.
+/// Device-to-host copy through two pinned staging buffers: the GPU fills one while all cores
+/// empty the other, so a pageable destination still sees close to pinned bandwidth.
 void copy_to_host(void* host, const void* device, std::size_t bytes, cudaStream_t stream) {
   constexpr std::size_t chunk = std::size_t{64} << 20;
   if (bytes <= chunk) {
@@ -449,7 +450,7 @@ void copy_to_host(void* host, const void* device, std::size_t bytes, cudaStream_
     if (c + 1 < chunks) issue(c + 1);
     HORIZON_CUDA_CHECK(cudaEventSynchronize(copied[c % 2]));
     const std::size_t at = c * chunk, size = std::min(chunk, bytes - at);
-    std::memcpy(static_cast<char*>(host) + at, staging[c % 2], size);
+    parallel_copy(static_cast<char*>(host) + at, staging[c % 2], size);
   }
   for (auto& e : copied) cudaEventDestroy(e);
   cudaFreeHost(staging[0]);
@@ -504,10 +505,10 @@ NeighborList search_cuda(PointView points, const SearchOptions& options, SearchS
   auto kernels = std::chrono::steady_clock::now();
   std::int64_t total = 0;
   DeviceArray<std::int64_t> offsets = count_offsets(index, options, n, stream, meter, total);
-  std::vector<std::int64_t> host_offsets(n + 1);
+  Buffer<std::int64_t> host_offsets(n + 1);
   HORIZON_CUDA_CHECK(cudaMemcpyAsync(host_offsets.data(), offsets.get(), offsets.bytes(), cudaMemcpyDeviceToHost, stream));
   HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
-  std::vector<point_id> indices(static_cast<std::size_t>(total));
+  Buffer<point_id> indices(static_cast<std::size_t>(total));
 
   // Batches of rows sized to what is free: two list buffers plus the sort's scratch.
   const std::size_t free = free_device_bytes();
@@ -545,8 +546,8 @@ NeighborList search_cuda(PointView points, const SearchOptions& options, SearchS
 void DeviceNeighborList::Free::operator()(void* pointer) const { cudaFree(pointer); }
 
 NeighborList DeviceNeighborList::to_host(bool half) const {
-  std::vector<std::int64_t> offsets(points_ + 1, 0);
-  std::vector<point_id> indices(static_cast<std::size_t>(total_));
+  Buffer<std::int64_t> offsets(points_ + 1, 0);
+  Buffer<point_id> indices(static_cast<std::size_t>(total_));
   if (offsets_) detail::copy_to_host(offsets.data(), offsets_.get(), offsets.size() * sizeof(std::int64_t), nullptr);
   if (total_) detail::copy_to_host(indices.data(), indices_.get(), indices.size() * sizeof(point_id), nullptr);
   return NeighborList(std::move(offsets), std::move(indices), half);
@@ -565,8 +566,13 @@ DeviceNeighborList search_device(const double* xyz, std::size_t count, int dims,
     list.offsets_.reset(offsets.release());
     return list;
   }
-  const auto start = std::chrono::steady_clock::now();
+  auto start = std::chrono::steady_clock::now();
   const detail::DeviceIndex index(xyz, count, dims, options, stream, meter);
+  if (stats) {
+    HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
+    stats->grid_seconds = detail::seconds_since(start);
+    start = std::chrono::steady_clock::now();
+  }
   offsets = detail::count_offsets(index, options, count, stream, meter, list.total_);
 
   const std::size_t list_bytes = static_cast<std::size_t>(list.total_) * sizeof(point_id);
@@ -586,8 +592,8 @@ DeviceNeighborList search_device(const double* xyz, std::size_t count, int dims,
   if (stats) {
     HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
     stats->backend = Backend::cuda;
-    stats->search_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    stats->kernel_seconds = stats->search_seconds;
+    stats->search_seconds = detail::seconds_since(start);
+    stats->kernel_seconds = stats->grid_seconds + stats->search_seconds;
     stats->peak_gpu_bytes = meter.peak;
   }
   return list;
