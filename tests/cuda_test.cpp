@@ -41,6 +41,19 @@ TEST(Cuda, BatchedHostSearchEqualsSerial) {
   EXPECT_EQ(search(points.view(), cuda), search(points.view(), options_for(0.1, Backend::serial)));
 }
 
+TEST(Cuda, RowsOfEveryLengthAreSorted) {
+  REQUIRE_GPU();
+  // Families of ~100 (warp sort), ~1000 (block sort) and ~3000 (segmented sort) points.
+  for (std::size_t blob : {100u, 1000u, 3000u}) {
+    PointSet points = clustered_cloud(blob, 1, 0.01, 3, 4);
+    const PointSet spread = random_cloud(5000, 3, 6);
+    points.xyz.insert(points.xyz.end(), spread.xyz.begin(), spread.xyz.end());
+    EXPECT_EQ(search(points.view(), options_for(0.5, Backend::cuda)),
+              search(points.view(), options_for(0.5, Backend::serial)))
+        << blob;
+  }
+}
+
 TEST(Cuda, LatticeMatchesClosedFormAtScale) {
   REQUIRE_GPU();
   for (double m : {1.5, 3.015}) {
