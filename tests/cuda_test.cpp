@@ -43,8 +43,8 @@ TEST(Cuda, BatchedHostSearchEqualsSerial) {
 
 TEST(Cuda, RowsOfEveryLengthAreSorted) {
   REQUIRE_GPU();
-  // Families of ~100 (warp sort), ~1000 (block sort) and ~3000 (segmented sort) points.
-  for (std::size_t blob : {100u, 1000u, 3000u}) {
+  // Families of ~50 and ~100 (warp sorts), ~1000 (block sort), ~3000 (segmented sort) points.
+  for (std::size_t blob : {50u, 100u, 1000u, 3000u}) {
     PointSet points = clustered_cloud(blob, 1, 0.01, 3, 4);
     const PointSet spread = random_cloud(5000, 3, 6);
     points.xyz.insert(points.xyz.end(), spread.xyz.begin(), spread.xyz.end());

@@ -398,35 +398,51 @@ std::size_t sort_scratch_bytes(std::int64_t entries, std::int64_t rows, const st
 }
 
 // ---- Row sort ------------------------------------------------------------------------------
-// Families are sorted in on-chip memory: a warp per row of up to 256 ids, a block per row of
-// up to 2048 (cub::WarpMergeSort / BlockMergeSort). CUB's DeviceSegmentedSort, used before,
+// Families are sorted on chip, by the smallest unit that holds them: a thread per row of up to
+// 32 ids (insertion sort), a warp per row of up to 256 (cub::WarpMergeSort, 2-8 ids a lane), a
+// block per row of up to 2048 (cub::BlockMergeSort). CUB's DeviceSegmentedSort, used first,
 // took 0.59 s for the 8 M rows of ~120 ids of lattice n = 200, m = 3.015 on an H100, against
-// 0.028 s for counting and filling them; it remains the path for rows longer than 2048.
+// 0.028 s to count and fill them; it remains the path for rows longer than 2048.
 
-constexpr int warp_items = 8, warp_row = 32 * warp_items;
-constexpr int block_items = 8, block_row = block_size * block_items;
+constexpr int thread_row = 32, warp_row = 256, block_items = 8, block_row = block_size * block_items;
 
 struct IdLess {
   __device__ bool operator()(point_id a, point_id b) const { return a < b; }
 };
 
+__global__ void sort_tiny_rows(point_id* rows, const std::int64_t* offsets, std::int64_t base,
+                               std::int64_t row_count) {
+  const std::int64_t r = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
+  if (r >= row_count) return;
+  const std::int64_t length = offsets[r + 1] - offsets[r];
+  if (length > thread_row) return;
+  point_id* row = rows + (offsets[r] - base);
+  for (int i = 1; i < length; ++i) {
+    const point_id value = row[i];
+    int j = i;
+    for (; j > 0 && row[j - 1] > value; --j) row[j] = row[j - 1];
+    row[j] = value;
+  }
+}
+
+template <int Items>
 __global__ void sort_short_rows(point_id* rows, const std::int64_t* offsets, std::int64_t base,
                                 std::int64_t row_count) {
-  using WarpSort = cub::WarpMergeSort<point_id, warp_items, 32>;
+  using WarpSort = cub::WarpMergeSort<point_id, Items, 32>;
   __shared__ typename WarpSort::TempStorage temp[block_size / 32];
   const int warp = threadIdx.x / 32, lane = threadIdx.x % 32;
   const std::int64_t r = blockIdx.x * static_cast<std::int64_t>(block_size / 32) + warp;
   if (r >= row_count) return;
   const std::int64_t begin = offsets[r] - base, length = offsets[r + 1] - offsets[r];
-  if (length < 2 || length > warp_row) return;  // uniform across the warp
-  point_id keys[warp_items];
-  for (int i = 0; i < warp_items; ++i) {
-    const int at = lane * warp_items + i;
+  if (length <= thread_row || length > 32 * Items) return;  // uniform across the warp
+  point_id keys[Items];
+  for (int i = 0; i < Items; ++i) {
+    const int at = lane * Items + i;
     keys[i] = at < length ? rows[begin + at] : INT_MAX;
   }
   WarpSort(temp[warp]).Sort(keys, IdLess());
-  for (int i = 0; i < warp_items; ++i) {
-    const int at = lane * warp_items + i;
+  for (int i = 0; i < Items; ++i) {
+    const int at = lane * Items + i;
     if (at < length) rows[begin + at] = keys[i];
   }
 }
@@ -449,6 +465,27 @@ __global__ void sort_long_rows(point_id* rows, const std::int64_t* offsets, std:
   }
 }
 
+/// Sorts rows of up to block_row ids, each by the smallest unit that holds it.
+void sort_rows_on_chip(point_id* rows, const std::int64_t* offsets, std::int64_t base,
+                       std::int64_t row_count, std::int64_t longest, cudaStream_t stream) {
+  const unsigned warp_blocks = blocks_for(static_cast<std::size_t>(row_count) * 32);
+  sort_tiny_rows<<<blocks_for(static_cast<std::size_t>(row_count)), block_size, 0, stream>>>(rows, offsets, base, row_count);
+  check_launch("sort_tiny_rows");
+  if (longest > thread_row) {
+    if (longest <= 64)
+      sort_short_rows<2><<<warp_blocks, block_size, 0, stream>>>(rows, offsets, base, row_count);
+    else if (longest <= 128)
+      sort_short_rows<4><<<warp_blocks, block_size, 0, stream>>>(rows, offsets, base, row_count);
+    else
+      sort_short_rows<8><<<warp_blocks, block_size, 0, stream>>>(rows, offsets, base, row_count);
+    check_launch("sort_short_rows");
+  }
+  if (longest > warp_row) {
+    sort_long_rows<<<static_cast<unsigned>(row_count), block_size, 0, stream>>>(rows, offsets, base);
+    check_launch("sort_long_rows");
+  }
+}
+
 /// Fills and sorts the rows of ids [first, last): their entries go to rows_out, which holds
 /// offsets[last] - offsets[first] entries; `spare` is as large when a row is longer than
 /// sortable on chip (the segmented sort's second buffer). Returns the buffer holding the result.
@@ -460,13 +497,7 @@ point_id* fill_rows(const DeviceIndex& index, const SearchOptions& options, cons
   if (!options.sort_rows || entries == 0) return rows_out;
   const std::int64_t rows = last - first;
   if (longest <= block_row) {
-    sort_short_rows<<<blocks_for(static_cast<std::size_t>(rows) * 32), block_size, 0, stream>>>(
-        rows_out, offsets + first, base, rows);
-    check_launch("sort_short_rows");
-    if (longest > warp_row) {
-      sort_long_rows<<<static_cast<unsigned>(rows), block_size, 0, stream>>>(rows_out, offsets + first, base);
-      check_launch("sort_long_rows");
-    }
+    sort_rows_on_chip(rows_out, offsets + first, base, rows, longest, stream);
     return rows_out;
   }
   const auto begins = thrust::make_transform_iterator(offsets + first, MinusBase{base});
