@@ -4,7 +4,7 @@
 BUILD ?= build
 JOBS ?= $(shell nproc)
 PACKAGES = build-essential cmake libgtest-dev libbenchmark-dev libcli11-dev libfmt-dev \
-           nlohmann-json3-dev libnanoflann-dev libhwy-dev
+           nlohmann-json3-dev libnanoflann-dev libhwy-dev libopenmpi-dev openmpi-bin
 
 .PHONY: deps build run test bench clean
 

@@ -4,12 +4,28 @@
 #include <string>
 
 #include "horizon/points.hpp"
+#include "horizon/search.hpp"
 
 namespace horizon::cli {
 
 void add_generate(CLI::App& app);
 void add_search(CLI::App& app);
 void add_verify(CLI::App& app);
+
+struct SearchArgs {
+  std::string input, out, backend = "auto", metric = "l2", format = "npy";
+  std::string exchange, decomposition = "rcb";  // distributed runs only
+  double horizon = 0;
+  int threads = 0, cells_per_horizon = 1, device = 0;
+  bool half = false, unsorted = false, json = false, quiet = false;
+};
+SearchOptions search_options(const SearchArgs& args);
+/// Throws when an output would overwrite the input.
+void check_output(const SearchArgs& args);
+
+/// Under mpirun (or with --exchange): the distributed search, written by rank 0.
+bool distributed_requested(const SearchArgs& args);
+void run_distributed(const SearchArgs& args);
 
 /// Thrown by verify when the list differs from the oracle: exit status 1.
 struct VerifyFailed {};

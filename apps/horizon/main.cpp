@@ -1,7 +1,12 @@
 // horizon: all-pairs fixed-radius neighbour lists from the command line.
 #include <unistd.h>
+#if defined(HORIZON_WITH_MPI)
+#include <mpi.h>
+#endif
 
 #include <cstdio>
+#include <cstdlib>
+#include <string>
 #include <iostream>
 
 #include "commands.hpp"
@@ -33,7 +38,39 @@ void Progress::say(const std::string& what) const {
 
 }  // namespace horizon::cli
 
+namespace {
+
+#if defined(HORIZON_WITH_MPI)
+// MPI starts only for runs that ask for it: under mpirun, or with --exchange (a one-rank run).
+struct MpiSession {
+  MpiSession(int& argc, char**& argv) {
+    bool wanted = std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMI_SIZE");
+    for (int i = 1; i < argc; ++i) wanted = wanted || std::string(argv[i]).rfind("--exchange", 0) == 0;
+    if (wanted) MPI_Init(&argc, &argv);
+    active = wanted;
+  }
+  ~MpiSession() {
+    if (active) MPI_Finalize();
+  }
+  // A failure on one rank must not leave the others waiting in a collective.
+  void abort(int status) const {
+    int size = 1;
+    if (active) MPI_Comm_size(MPI_COMM_WORLD, &size);
+    if (size > 1) MPI_Abort(MPI_COMM_WORLD, status);
+  }
+  bool active = false;
+};
+#else
+struct MpiSession {
+  MpiSession(int&, char**&) {}
+  void abort(int) const {}
+};
+#endif
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  MpiSession mpi(argc, argv);
   CLI::App app{"horizon: all-pairs fixed-radius neighbour lists (cell lists, CPU and GPU)"};
   app.require_subcommand(1);
   horizon::cli::add_generate(app);
@@ -52,9 +89,11 @@ int main(int argc, char** argv) {
     return 1;
   } catch (const horizon::Error& e) {
     std::cerr << "horizon: error: " << e.what() << "\n";
+    mpi.abort(2);
     return 2;
   } catch (const std::bad_alloc&) {
     std::cerr << "horizon: error: out of memory (the neighbour list does not fit)\n";
+    mpi.abort(2);
     return 2;
   }
   return 0;

@@ -13,32 +13,18 @@ namespace horizon::cli {
 
 namespace {
 
-struct SearchArgs {
-  std::string input, out, backend = "auto", metric = "l2", format = "npy";
-  double horizon = 0;
-  int threads = 0, cells_per_horizon = 1, device = 0;
-  bool half = false, unsorted = false, json = false, quiet = false;
-};
-
 void run_search(const SearchArgs& args) {
+#if defined(HORIZON_WITH_MPI)
+  if (distributed_requested(args)) return run_distributed(args);
+#endif
   const Progress progress(args.quiet);
-  for (const char* suffix : {".csv", ".offsets.npy", ".indices.npy"})
-    if (!args.out.empty() && args.out + suffix == args.input)
-      throw Error("--out " + args.out + " would overwrite the input " + args.input);
+  check_output(args);
   Stopwatch clock;
   progress.say("reading " + args.input);
   const PointSet points = load_input(args.input);
   const double read_seconds = clock.lap();
 
-  SearchOptions options;
-  options.horizon = args.horizon;
-  options.metric = parse_metric(args.metric);
-  options.cells_per_horizon = args.cells_per_horizon;
-  options.half = args.half;
-  options.sort_rows = !args.unsorted;
-  options.backend = parse_backend(args.backend);
-  options.threads = args.threads;
-  options.device = args.device;
+  const SearchOptions options = search_options(args);
   progress.say("searching " + std::to_string(points.size()) + " points");
   SearchStats stats;
   const NeighborList list = search(points.view(), options, &stats);
@@ -95,6 +81,25 @@ void run_search(const SearchArgs& args) {
 
 }  // namespace
 
+SearchOptions search_options(const SearchArgs& args) {
+  SearchOptions options;
+  options.horizon = args.horizon;
+  options.metric = parse_metric(args.metric);
+  options.cells_per_horizon = args.cells_per_horizon;
+  options.half = args.half;
+  options.sort_rows = !args.unsorted;
+  options.backend = parse_backend(args.backend);
+  options.threads = args.threads;
+  options.device = args.device;
+  return options;
+}
+
+void check_output(const SearchArgs& args) {
+  for (const char* suffix : {".csv", ".offsets.npy", ".indices.npy"})
+    if (!args.out.empty() && args.out + suffix == args.input)
+      throw Error("--out " + args.out + " would overwrite the input " + args.input);
+}
+
 void add_search(CLI::App& app) {
   auto args = std::make_shared<SearchArgs>();
   CLI::App* cmd = app.add_subcommand("search", "build the neighbour list of a point set");
@@ -114,6 +119,12 @@ void add_search(CLI::App& app) {
   cmd->add_option("--format", args->format, "npy or csv")->check(CLI::IsMember({"npy", "csv"}));
   cmd->add_flag("--json", args->json, "print one JSON line of results and timings");
   cmd->add_flag("--quiet", args->quiet, "no progress on stderr");
+#if defined(HORIZON_WITH_MPI)
+  cmd->add_option("--exchange", args->exchange, "under mpirun: thesis, halo or overlap (default halo)")
+      ->check(CLI::IsMember({"thesis", "halo", "overlap"}));
+  cmd->add_option("--decomposition", args->decomposition, "under mpirun: rcb or brick")
+      ->check(CLI::IsMember({"rcb", "brick"}));
+#endif
   cmd->callback([args] { run_search(*args); });
 }
 

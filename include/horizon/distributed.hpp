@@ -1,0 +1,63 @@
+#pragma once
+/// \file distributed.hpp
+/// Neighbour lists across MPI ranks. Each rank owns part of the points, receives the ghost
+/// points within the horizon of its sub-domain, searches locally with any node-local backend,
+/// and returns the rows of the points it owns with global ids. For any rank count the union of
+/// the rows equals the serial list exactly.
+#include <mpi.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "horizon/decomposition.hpp"
+#include "horizon/search.hpp"
+
+namespace horizon {
+
+/// How ghost points reach the ranks that need them.
+enum class Exchange {
+  thesis,   ///< thesis §4.5: partition by input order; every rank sends to every other rank the
+            ///< points in cells adjacent to that rank's occupied cells
+  halo,     ///< spatial decomposition, migration of points to their owners, then a halo
+            ///< exchange with spatial neighbours only (message sizes first)
+  overlap,  ///< every rank reads all points and keeps its sub-domain plus a horizon-wide halo:
+            ///< no point data moves between ranks (thesis ch. 5 / future work)
+};
+Exchange parse_exchange(const std::string& name);
+const char* exchange_name(Exchange exchange);
+
+struct DistributedOptions {
+  SearchOptions search;  ///< the node-local search every rank runs
+  Exchange exchange = Exchange::halo;
+  Decomposition::Kind decomposition = Decomposition::Kind::rcb;  ///< halo and overlap
+};
+
+/// Per-phase seconds (maximum over ranks) and traffic (sums over ranks, and the busiest rank).
+struct DistributedStats {
+  double preprocess = 0, decompose = 0, communicate = 0, search = 0, gather = 0;
+  std::int64_t bytes_sent = 0, messages_sent = 0, max_bytes_sent = 0, max_messages_sent = 0;
+  std::int64_t ghosts = 0;                    ///< ghost points summed over ranks
+  std::int64_t min_owned = 0, max_owned = 0;  ///< owned points per rank
+  int ranks = 1;
+};
+
+/// The families of the points one rank owns: ids[r] is the global id of row r.
+struct OwnedRows {
+  std::vector<std::int64_t> ids;
+  NeighborList rows;  ///< neighbours as global ids, sorted; half lists keep j > i globally
+};
+
+/// Collective over `comm`. With thesis or halo, `points` are the points this rank holds and
+/// `ids` their global ids (any split; a rank may hold none). With overlap, every rank passes
+/// all points and ids is ignored.
+OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<std::int64_t>& ids,
+                             std::size_t global_count, const DistributedOptions& options,
+                             DistributedStats* stats = nullptr);
+
+/// Collective: the whole list in global id order on `root` (an empty list elsewhere), sent
+/// point to point by rank in chunks (no 2^31 limit on a rank's entries).
+NeighborList gather_rows(MPI_Comm comm, const OwnedRows& owned, std::size_t global_count, bool half,
+                         int root = 0);
+
+}  // namespace horizon

@@ -1,0 +1,164 @@
+#include "horizon/decomposition.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace horizon {
+
+bool Box::contains(const double* x, int dims) const {
+  for (int a = 0; a < dims; ++a)
+    if (x[a] < lo[a] || x[a] >= hi[a]) return false;
+  return true;
+}
+
+bool Box::near(const double* x, int dims, double reach) const {
+  for (int a = 0; a < dims; ++a)
+    if (x[a] <= lo[a] - reach || x[a] >= hi[a] + reach) return false;
+  return true;
+}
+
+namespace {
+
+// The global box, its upper faces pushed out to the next double so that [lo, hi) holds every
+// point; 2-D boxes are degenerate in z.
+Box open_box(const Bounds& b, int dims) {
+  Box box;
+  for (int a = 0; a < 3; ++a) {
+    box.lo[a] = a < dims ? b.lo[a] : -std::numeric_limits<double>::infinity();
+    box.hi[a] = a < dims ? std::nextafter(b.hi[a], std::numeric_limits<double>::infinity())
+                         : std::numeric_limits<double>::infinity();
+  }
+  return box;
+}
+
+}  // namespace
+
+Decomposition Decomposition::brick(const Bounds& bounds, int dims, int ranks) {
+  Decomposition d;
+  d.dims_ = dims;
+  const Box whole = open_box(bounds, dims);
+  // Choose px * py * pz = ranks minimising the total cut area of the box.
+  std::array<double, 3> extent{};
+  for (int a = 0; a < 3; ++a) extent[a] = a < dims ? std::max(whole.hi[a] - whole.lo[a], 1e-300) : 1.0;
+  std::array<int, 3> best{ranks, 1, 1};
+  double best_area = std::numeric_limits<double>::infinity();
+  for (int px = 1; px <= ranks; ++px) {
+    if (ranks % px) continue;
+    for (int py = 1; py <= ranks / px; ++py) {
+      if ((ranks / px) % py) continue;
+      const int pz = ranks / px / py;
+      if (dims == 2 && pz != 1) continue;
+      const double area = (px - 1) * extent[1] * extent[2] + (py - 1) * extent[0] * extent[2] +
+                          (pz - 1) * extent[0] * extent[1];
+      if (area < best_area) {
+        best_area = area;
+        best = {px, py, pz};
+      }
+    }
+  }
+  // A brick is a tree too: halve the range of slabs along x, then y, then z, cutting at slab
+  // boundaries, so owner() is a walk of log2(ranks) cuts.
+  auto boundary = [&](int axis, int slab) {
+    return slab == best[axis] ? whole.hi[axis]
+                              : whole.lo[axis] + (whole.hi[axis] - whole.lo[axis]) * slab / best[axis];
+  };
+  d.boxes_.resize(static_cast<std::size_t>(ranks));
+  std::array<int, 3> slab{0, 0, 0};
+  auto split = [&](auto&& self, int axis, int first, int last) -> int {
+    if (last - first == 1) {
+      slab[axis] = first;
+      if (axis < 2) return self(self, axis + 1, 0, best[axis + 1]);
+      Box box;
+      for (int a = 0; a < 3; ++a) {
+        box.lo[a] = boundary(a, slab[a]);
+        box.hi[a] = boundary(a, slab[a] + 1);
+      }
+      const int rank = slab[0] + best[0] * (slab[1] + best[1] * slab[2]);
+      d.boxes_[static_cast<std::size_t>(rank)] = box;
+      return -1 - rank;
+    }
+    const int middle = (first + last) / 2;
+    const int node = static_cast<int>(d.tree_.size());
+    d.tree_.push_back({axis, boundary(axis, middle), 0, 0});
+    const int below = self(self, axis, first, middle);
+    const int above = self(self, axis, middle, last);
+    d.tree_[static_cast<std::size_t>(node)].below = below;
+    d.tree_[static_cast<std::size_t>(node)].above = above;
+    return node;
+  };
+  split(split, 0, 0, best[0]);
+  return d;
+}
+
+Decomposition Decomposition::rcb(const Bounds& bounds, PointView sample, int ranks) {
+  Decomposition d;
+  d.dims_ = sample.dims();
+  d.boxes_.resize(static_cast<std::size_t>(ranks));
+  std::vector<std::size_t> ids(sample.size());
+  std::iota(ids.begin(), ids.end(), std::size_t{0});
+  auto split = [&](auto&& self, const Box& box, std::size_t first, std::size_t last, int first_rank,
+                   int rank_count) -> int {
+    if (rank_count == 1) {
+      d.boxes_[static_cast<std::size_t>(first_rank)] = box;
+      return -1 - first_rank;
+    }
+    int axis = 0;
+    for (int a = 1; a < d.dims_; ++a)
+      if (box.hi[a] - box.lo[a] > box.hi[axis] - box.lo[axis]) axis = a;
+    const int below_ranks = rank_count / 2;
+    // The cut leaves below it the share of the points that its ranks should own.
+    const std::size_t n = last - first;
+    const std::size_t k = first + n * static_cast<std::size_t>(below_ranks) / static_cast<std::size_t>(rank_count);
+    double at = 0.5 * (box.lo[axis] + box.hi[axis]);
+    if (n > 0 && k > first && k < last) {
+      std::nth_element(ids.begin() + static_cast<std::ptrdiff_t>(first), ids.begin() + static_cast<std::ptrdiff_t>(k),
+                       ids.begin() + static_cast<std::ptrdiff_t>(last),
+                       [&](std::size_t a, std::size_t b) { return sample(a, axis) < sample(b, axis); });
+      at = sample(ids[k], axis);
+    }
+    at = std::clamp(at, box.lo[axis], box.hi[axis]);
+    std::size_t middle = first;  // points below the cut first
+    for (std::size_t i = first; i < last; ++i)
+      if (sample(ids[i], axis) < at) std::swap(ids[i], ids[middle++]);
+    Box below = box, above = box;
+    below.hi[axis] = above.lo[axis] = at;
+    const int node = static_cast<int>(d.tree_.size());
+    d.tree_.push_back({axis, at, 0, 0});
+    const int b = self(self, below, first, middle, first_rank, below_ranks);
+    const int a = self(self, above, middle, last, first_rank + below_ranks, rank_count - below_ranks);
+    d.tree_[static_cast<std::size_t>(node)].below = b;
+    d.tree_[static_cast<std::size_t>(node)].above = a;
+    return node;
+  };
+  split(split, open_box(bounds, d.dims_), 0, sample.size(), 0, ranks);
+  return d;
+}
+
+int Decomposition::owner(const double* x) const {
+  if (tree_.empty()) return 0;
+  int node = 0;
+  for (;;) {
+    const Cut& cut = tree_[static_cast<std::size_t>(node)];
+    const int next = x[cut.axis] < cut.at ? cut.below : cut.above;
+    if (next < 0) return -1 - next;
+    node = next;
+  }
+}
+
+std::vector<int> Decomposition::partners(int rank, double reach) const {
+  std::vector<int> out;
+  const Box& mine = box(rank);
+  for (int r = 0; r < ranks(); ++r) {
+    if (r == rank) continue;
+    const Box& other = box(r);
+    bool overlaps = true;
+    for (int a = 0; a < dims_; ++a)
+      overlaps = overlaps && other.lo[a] - reach < mine.hi[a] && mine.lo[a] < other.hi[a] + reach;
+    if (overlaps) out.push_back(r);
+  }
+  return out;
+}
+
+}  // namespace horizon

@@ -1,0 +1,321 @@
+// The distributed search: preprocess (global bounds) -> decompose and migrate -> exchange
+// ghosts -> search locally -> rows of owned points with global ids.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "exchange.hpp"
+#include "horizon/distributed.hpp"
+#include "horizon/error.hpp"
+#include "horizon/stopwatch.hpp"
+
+namespace horizon {
+
+Exchange parse_exchange(const std::string& name) {
+  if (name == "thesis") return Exchange::thesis;
+  if (name == "halo") return Exchange::halo;
+  if (name == "overlap") return Exchange::overlap;
+  throw Error("unknown exchange '" + name + "' (expected thesis, halo or overlap)");
+}
+
+const char* exchange_name(Exchange exchange) {
+  switch (exchange) {
+    case Exchange::thesis: return "thesis";
+    case Exchange::halo: return "halo";
+    case Exchange::overlap: return "overlap";
+  }
+  return "?";
+}
+
+namespace {
+
+using detail::Packed;
+
+struct Rank {
+  MPI_Comm comm;
+  int id, size;
+};
+
+Packed pack(PointView points, std::size_t i, std::int64_t id) {
+  Packed p{0, 0, 0, static_cast<double>(id)};
+  for (int a = 0; a < points.dims(); ++a) p[static_cast<std::size_t>(a)] = points(i, a);
+  return p;
+}
+
+Bounds global_bounds(const Rank& rank, PointView points) {
+  std::array<double, 3> lo, hi;
+  lo.fill(std::numeric_limits<double>::infinity());
+  hi.fill(-std::numeric_limits<double>::infinity());
+  if (!points.empty()) {
+    const Bounds mine = bounds_of(points);
+    lo = mine.lo;
+    hi = mine.hi;
+  }
+  Bounds box;
+  MPI_Allreduce(lo.data(), box.lo.data(), 3, MPI_DOUBLE, MPI_MIN, rank.comm);
+  MPI_Allreduce(hi.data(), box.hi.data(), 3, MPI_DOUBLE, MPI_MAX, rank.comm);
+  for (int a = points.dims(); a < 3; ++a) box.lo[a] = box.hi[a] = 0;
+  return box;
+}
+
+// Every rank contributes every k-th point it holds to a sample of at most ~2^16 points that
+// all ranks then hold, so all of them cut the same recursive bisection.
+PointSet gather_sample(const Rank& rank, PointView points, std::size_t global_count, bool everyone_has_all) {
+  const std::size_t stride = std::max<std::size_t>(1, global_count / 65536);
+  PointSet sample{points.dims(), {}};
+  for (std::size_t i = 0; i < points.size(); i += stride)
+    for (int a = 0; a < points.dims(); ++a) sample.xyz.push_back(points(i, a));
+  if (everyone_has_all) return sample;
+  const int mine = static_cast<int>(sample.xyz.size());
+  std::vector<int> counts(static_cast<std::size_t>(rank.size)), displs(static_cast<std::size_t>(rank.size));
+  MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, rank.comm);
+  std::exclusive_scan(counts.begin(), counts.end(), displs.begin(), 0);
+  PointSet all{points.dims(), std::vector<double>(static_cast<std::size_t>(displs.back() + counts.back()))};
+  MPI_Allgatherv(sample.xyz.data(), mine, MPI_DOUBLE, all.xyz.data(), counts.data(), displs.data(), MPI_DOUBLE,
+                 rank.comm);
+  return all;
+}
+
+Decomposition decompose(const Rank& rank, PointView points, std::size_t global_count, const Bounds& box,
+                        Decomposition::Kind kind, bool everyone_has_all) {
+  if (kind == Decomposition::Kind::brick) return Decomposition::brick(box, points.dims(), rank.size);
+  const PointSet sample = gather_sample(rank, points, global_count, everyone_has_all);
+  return Decomposition::rcb(box, sample.view(), rank.size);
+}
+
+// thesis §4.3/§4.5: cells of side horizon over the global box; each rank learns every rank's
+// occupied cells and sends each of them the points it holds in cells adjacent to those.
+std::vector<Packed> thesis_ghosts(const Rank& rank, const std::vector<Packed>& held, const Bounds& box,
+                                  int dims, std::size_t global_count, double horizon, detail::Traffic& traffic) {
+  const Grid grid = Grid::from_bounds(box, dims, global_count, horizon, 1);
+  using Cell = std::array<std::int64_t, 3>;
+  auto cell_of = [&](const Packed& p) {
+    Cell c{0, 0, 0};
+    for (int a = 0; a < dims; ++a) c[static_cast<std::size_t>(a)] = grid.cell_of(p[static_cast<std::size_t>(a)], a);
+    return c;
+  };
+  std::vector<Cell> mine;
+  for (const Packed& p : held) mine.push_back(cell_of(p));
+  std::sort(mine.begin(), mine.end());
+  mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
+
+  const int count = static_cast<int>(mine.size() * 3);
+  std::vector<int> counts(static_cast<std::size_t>(rank.size)), displs(static_cast<std::size_t>(rank.size));
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, rank.comm);
+  std::exclusive_scan(counts.begin(), counts.end(), displs.begin(), 0);
+  std::vector<std::int64_t> all(static_cast<std::size_t>(displs.back() + counts.back()));
+  MPI_Allgatherv(mine.data(), count, MPI_INT64_T, all.data(), counts.data(), displs.data(), MPI_INT64_T, rank.comm);
+  traffic.bytes += static_cast<std::int64_t>(count) * 8 * (rank.size - 1);
+  traffic.messages += rank.size - 1;
+
+  std::vector<std::vector<Packed>> outgoing(static_cast<std::size_t>(rank.size));
+  const int reach_z = dims == 3 ? 1 : 0;
+  for (int r = 0; r < rank.size; ++r) {
+    if (r == rank.id) continue;
+    const Cell* first = reinterpret_cast<const Cell*>(all.data() + displs[static_cast<std::size_t>(r)]);
+    const Cell* last = first + counts[static_cast<std::size_t>(r)] / 3;
+    for (const Packed& p : held) {
+      const Cell c = cell_of(p);
+      bool adjacent = false;
+      for (std::int64_t dz = -reach_z; dz <= reach_z && !adjacent; ++dz)
+        for (std::int64_t dy = -1; dy <= 1 && !adjacent; ++dy)
+          for (std::int64_t dx = -1; dx <= 1 && !adjacent; ++dx)
+            adjacent = std::binary_search(first, last, Cell{c[0] + dx, c[1] + dy, c[2] + dz});
+      if (adjacent) outgoing[static_cast<std::size_t>(r)].push_back(p);
+    }
+  }
+  return detail::exchange_all(rank.comm, outgoing, traffic);
+}
+
+// Ghosts from spatial neighbours only, over a graph communicator of halo partners.
+std::vector<Packed> halo_ghosts(const Rank& rank, const std::vector<Packed>& owned, const Decomposition& d,
+                                int dims, double reach, detail::Traffic& traffic) {
+  const std::vector<int> partners = d.partners(rank.id, reach);
+  const int degree = static_cast<int>(partners.size());
+  MPI_Comm graph;
+  MPI_Dist_graph_create_adjacent(rank.comm, degree, partners.data(), MPI_UNWEIGHTED, degree, partners.data(),
+                                 MPI_UNWEIGHTED, MPI_INFO_NULL, 0, &graph);
+  std::vector<std::vector<Packed>> outgoing(partners.size());
+  for (const Packed& p : owned)
+    for (std::size_t k = 0; k < partners.size(); ++k)
+      if (d.box(partners[k]).near(p.data(), dims, reach)) outgoing[k].push_back(p);
+  std::vector<Packed> ghosts = detail::exchange_with(graph, outgoing, traffic);
+  MPI_Comm_free(&graph);
+  return ghosts;
+}
+
+// Searches owned + ghosts on this node and keeps the owned rows, in global ids.
+OwnedRows search_owned(std::vector<Packed>& owned, const std::vector<Packed>& ghosts, int dims,
+                       const SearchOptions& options) {
+  std::sort(owned.begin(), owned.end(), [](const Packed& a, const Packed& b) { return a[3] < b[3]; });
+  PointSet local{dims, {}};
+  std::vector<std::int64_t> global;
+  for (const std::vector<Packed>* set : std::initializer_list<const std::vector<Packed>*>{&owned, &ghosts})
+    for (const Packed& p : *set) {
+      for (int a = 0; a < dims; ++a) local.xyz.push_back(p[static_cast<std::size_t>(a)]);
+      global.push_back(static_cast<std::int64_t>(p[3]));
+    }
+  SearchOptions full = options;
+  full.half = false;  // a half list by local ids is not one by global ids
+  const NeighborList list = search(local.view(), full);
+
+  OwnedRows out;
+  Buffer<std::int64_t> offsets{0};
+  Buffer<point_id> indices;
+  for (std::size_t i = 0; i < owned.size(); ++i) {
+    const std::int64_t self = global[i];
+    out.ids.push_back(self);
+    const std::size_t start = indices.size();
+    for (point_id j : list.row(i))
+      if (!options.half || global[static_cast<std::size_t>(j)] > self)
+        indices.push_back(static_cast<point_id>(global[static_cast<std::size_t>(j)]));
+    if (options.sort_rows) std::sort(indices.begin() + static_cast<std::ptrdiff_t>(start), indices.end());
+    offsets.push_back(static_cast<std::int64_t>(indices.size()));
+  }
+  out.rows = NeighborList(std::move(offsets), std::move(indices), options.half);
+  return out;
+}
+
+}  // namespace
+
+OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<std::int64_t>& ids,
+                             std::size_t global_count, const DistributedOptions& options,
+                             DistributedStats* stats) {
+  Rank rank{comm, 0, 1};
+  MPI_Comm_rank(comm, &rank.id);
+  MPI_Comm_size(comm, &rank.size);
+  validate(points);
+  validate_horizon(options.search.horizon, options.search.cells_per_horizon);
+  const bool everyone_has_all = options.exchange == Exchange::overlap;
+  if (!everyone_has_all && ids.size() != points.size())
+    throw Error("search_distributed: " + std::to_string(points.size()) + " points but " +
+                std::to_string(ids.size()) + " global ids");
+  const int dims = points.dims();
+  detail::Traffic traffic;
+  std::array<double, 5> seconds{};  // preprocess, decompose, communicate, search, gather
+  Stopwatch clock;
+
+  // Preprocess: the global bounding box; a horizon widened by the rounding of the box tests.
+  const Bounds box = global_bounds(rank, points);
+  double extent = 0;
+  for (int a = 0; a < dims; ++a) extent = std::max(extent, box.hi[a] - box.lo[a]);
+  const double reach = options.search.horizon * (1 + std::ldexp(1.0, -40)) + std::ldexp(std::max(extent, 0.0), -49);
+  seconds[0] = clock.lap();
+
+  std::vector<Packed> owned, ghosts;
+  if (global_count > 0) {
+    if (options.exchange == Exchange::thesis) {
+      for (std::size_t i = 0; i < points.size(); ++i) owned.push_back(pack(points, i, ids[i]));
+      seconds[1] = clock.lap();
+      ghosts = thesis_ghosts(rank, owned, box, dims, global_count, options.search.horizon, traffic);
+      seconds[2] = clock.lap();
+    } else {
+      const Decomposition d = decompose(rank, points, global_count, box, options.decomposition, everyone_has_all);
+      if (everyone_has_all) {
+        // Overlap: keep what lies in or near the sub-domain, straight from the input.
+        for (std::size_t i = 0; i < points.size(); ++i) {
+          const Packed p = pack(points, i, static_cast<std::int64_t>(i));
+          if (d.owner(p.data()) == rank.id) owned.push_back(p);
+          else if (d.box(rank.id).near(p.data(), dims, reach)) ghosts.push_back(p);
+        }
+        seconds[1] = clock.lap();
+      } else {
+        std::vector<std::vector<Packed>> outgoing(static_cast<std::size_t>(rank.size));
+        for (std::size_t i = 0; i < points.size(); ++i) {
+          const Packed p = pack(points, i, ids[i]);
+          outgoing[static_cast<std::size_t>(d.owner(p.data()))].push_back(p);
+        }
+        owned = detail::exchange_all(comm, outgoing, traffic);
+        seconds[1] = clock.lap();
+        ghosts = halo_ghosts(rank, owned, d, dims, reach, traffic);
+        seconds[2] = clock.lap();
+      }
+    }
+  }
+  OwnedRows out = search_owned(owned, ghosts, dims, options.search);
+  seconds[3] = clock.lap();
+
+  if (stats) {
+    std::array<double, 5> worst{};
+    MPI_Allreduce(seconds.data(), worst.data(), 5, MPI_DOUBLE, MPI_MAX, comm);
+    const std::array<std::int64_t, 3> mine{traffic.bytes, traffic.messages, static_cast<std::int64_t>(ghosts.size())};
+    std::array<std::int64_t, 3> sum{}, most{};
+    MPI_Allreduce(mine.data(), sum.data(), 3, MPI_INT64_T, MPI_SUM, comm);
+    MPI_Allreduce(mine.data(), most.data(), 3, MPI_INT64_T, MPI_MAX, comm);
+    const std::int64_t n_owned = static_cast<std::int64_t>(owned.size());
+    std::int64_t fewest = 0, largest = 0;
+    MPI_Allreduce(&n_owned, &fewest, 1, MPI_INT64_T, MPI_MIN, comm);
+    MPI_Allreduce(&n_owned, &largest, 1, MPI_INT64_T, MPI_MAX, comm);
+    *stats = DistributedStats{worst[0], worst[1], worst[2], worst[3], 0, sum[0], sum[1], most[0], most[1],
+                              sum[2], fewest, largest, rank.size};
+  }
+  return out;
+}
+
+NeighborList gather_rows(MPI_Comm comm, const OwnedRows& owned, std::size_t global_count, bool half, int root) {
+  int id = 0, size = 1;
+  MPI_Comm_rank(comm, &id);
+  MPI_Comm_size(comm, &size);
+  constexpr std::size_t chunk = std::size_t{1} << 28;  // entries per message
+  const std::int64_t header[2] = {static_cast<std::int64_t>(owned.ids.size()), owned.rows.total()};
+  std::vector<std::int64_t> headers(static_cast<std::size_t>(2 * size));
+  MPI_Gather(header, 2, MPI_INT64_T, headers.data(), 2, MPI_INT64_T, root, comm);
+
+  auto send_all = [&](const void* data, std::size_t count, MPI_Datatype type, std::size_t item) {
+    for (std::size_t at = 0; at < count; at += chunk)
+      MPI_Send(static_cast<const char*>(data) + at * item, static_cast<int>(std::min(chunk, count - at)), type, root,
+               0, comm);
+  };
+  if (id != root) {
+    std::vector<std::int64_t> lengths(owned.ids.size());
+    for (std::size_t r = 0; r < lengths.size(); ++r) lengths[r] = static_cast<std::int64_t>(owned.rows.row_size(r));
+    send_all(owned.ids.data(), owned.ids.size(), MPI_INT64_T, 8);
+    send_all(lengths.data(), lengths.size(), MPI_INT64_T, 8);
+    send_all(owned.rows.indices().data(), owned.rows.indices().size(), MPI_INT32_T, 4);
+    return NeighborList({0}, {}, half);
+  }
+  auto receive_all = [&](void* data, std::size_t count, MPI_Datatype type, std::size_t item, int from) {
+    for (std::size_t at = 0; at < count; at += chunk)
+      MPI_Recv(static_cast<char*>(data) + at * item, static_cast<int>(std::min(chunk, count - at)), type, from, 0,
+               comm, MPI_STATUS_IGNORE);
+  };
+  // Per rank: global ids, row lengths, entries.
+  std::vector<std::vector<std::int64_t>> ids(static_cast<std::size_t>(size)), lengths(static_cast<std::size_t>(size));
+  std::vector<Buffer<point_id>> entries(static_cast<std::size_t>(size));
+  for (int r = 0; r < size; ++r) {
+    const auto n = static_cast<std::size_t>(headers[static_cast<std::size_t>(2 * r)]);
+    const auto total = static_cast<std::size_t>(headers[static_cast<std::size_t>(2 * r + 1)]);
+    auto& rid = ids[static_cast<std::size_t>(r)];
+    auto& rlen = lengths[static_cast<std::size_t>(r)];
+    if (r == root) {
+      rid = owned.ids;
+      for (std::size_t i = 0; i < n; ++i) rlen.push_back(static_cast<std::int64_t>(owned.rows.row_size(i)));
+      continue;
+    }
+    rid.resize(n);
+    rlen.resize(n);
+    entries[static_cast<std::size_t>(r)].resize(total);
+    receive_all(rid.data(), n, MPI_INT64_T, 8, r);
+    receive_all(rlen.data(), n, MPI_INT64_T, 8, r);
+    receive_all(entries[static_cast<std::size_t>(r)].data(), total, MPI_INT32_T, 4, r);
+  }
+  Buffer<std::int64_t> offsets(global_count + 1, 0);
+  for (int r = 0; r < size; ++r)
+    for (std::size_t i = 0; i < ids[static_cast<std::size_t>(r)].size(); ++i)
+      offsets[static_cast<std::size_t>(ids[static_cast<std::size_t>(r)][i]) + 1] = lengths[static_cast<std::size_t>(r)][i];
+  std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
+  Buffer<point_id> indices(static_cast<std::size_t>(offsets.back()));
+  for (int r = 0; r < size; ++r) {
+    const point_id* from = r == root ? owned.rows.indices().data() : entries[static_cast<std::size_t>(r)].data();
+    for (std::size_t i = 0; i < ids[static_cast<std::size_t>(r)].size(); ++i) {
+      const auto g = static_cast<std::size_t>(ids[static_cast<std::size_t>(r)][i]);
+      const auto length = static_cast<std::size_t>(lengths[static_cast<std::size_t>(r)][i]);
+      std::copy(from, from + length, indices.begin() + offsets[g]);
+      from += length;
+    }
+  }
+  return NeighborList(std::move(offsets), std::move(indices), half);
+}
+
+}  // namespace horizon

@@ -1,0 +1,83 @@
+#include "exchange.hpp"
+
+#include <limits>
+#include <numeric>
+
+#include "horizon/error.hpp"
+
+namespace horizon::detail {
+
+namespace {
+
+// MPI counts are int: displacements and counts in units of Packed (4 doubles) must fit.
+int as_count(std::size_t n) {
+  if (n > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    throw Error("a rank would send more than 2^31 points in one exchange; use more ranks");
+  return static_cast<int>(n);
+}
+
+MPI_Datatype packed_type() {
+  static MPI_Datatype type = [] {
+    MPI_Datatype t;
+    MPI_Type_contiguous(4, MPI_DOUBLE, &t);
+    MPI_Type_commit(&t);
+    return t;
+  }();
+  return type;
+}
+
+struct Layout {
+  std::vector<int> send_counts, send_displs, recv_counts, recv_displs;
+  std::vector<Packed> send;
+};
+
+Layout pack(const std::vector<std::vector<Packed>>& outgoing, Traffic& traffic) {
+  Layout l;
+  for (const auto& out : outgoing) {
+    l.send_displs.push_back(as_count(l.send.size()));
+    l.send_counts.push_back(as_count(out.size()));
+    l.send.insert(l.send.end(), out.begin(), out.end());
+    if (!out.empty()) {
+      traffic.messages += 1;
+      traffic.bytes += static_cast<std::int64_t>(out.size() * sizeof(Packed));
+    }
+  }
+  return l;
+}
+
+void displace(Layout& l) {
+  l.recv_displs.resize(l.recv_counts.size());
+  std::size_t at = 0;
+  for (std::size_t r = 0; r < l.recv_counts.size(); ++r) {
+    l.recv_displs[r] = as_count(at);
+    at += static_cast<std::size_t>(l.recv_counts[r]);
+  }
+}
+
+}  // namespace
+
+std::vector<Packed> exchange_all(MPI_Comm comm, const std::vector<std::vector<Packed>>& outgoing,
+                                 Traffic& traffic) {
+  Layout l = pack(outgoing, traffic);
+  l.recv_counts.resize(outgoing.size());
+  MPI_Alltoall(l.send_counts.data(), 1, MPI_INT, l.recv_counts.data(), 1, MPI_INT, comm);
+  displace(l);
+  std::vector<Packed> received(static_cast<std::size_t>(std::accumulate(l.recv_counts.begin(), l.recv_counts.end(), 0LL)));
+  MPI_Alltoallv(l.send.data(), l.send_counts.data(), l.send_displs.data(), packed_type(), received.data(),
+                l.recv_counts.data(), l.recv_displs.data(), packed_type(), comm);
+  return received;
+}
+
+std::vector<Packed> exchange_with(MPI_Comm graph, const std::vector<std::vector<Packed>>& outgoing,
+                                  Traffic& traffic) {
+  Layout l = pack(outgoing, traffic);
+  l.recv_counts.resize(outgoing.size());
+  MPI_Neighbor_alltoall(l.send_counts.data(), 1, MPI_INT, l.recv_counts.data(), 1, MPI_INT, graph);
+  displace(l);
+  std::vector<Packed> received(static_cast<std::size_t>(std::accumulate(l.recv_counts.begin(), l.recv_counts.end(), 0LL)));
+  MPI_Neighbor_alltoallv(l.send.data(), l.send_counts.data(), l.send_displs.data(), packed_type(), received.data(),
+                         l.recv_counts.data(), l.recv_displs.data(), packed_type(), graph);
+  return received;
+}
+
+}  // namespace horizon::detail

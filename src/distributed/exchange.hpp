@@ -1,0 +1,28 @@
+#pragma once
+// Moving points between ranks: every exchange strategy sends points packed as
+// (x, y, z, global id) in doubles (ids below 2^53 are exact) and counts what it sends.
+#include <mpi.h>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace horizon::detail {
+
+using Packed = std::array<double, 4>;
+
+struct Traffic {
+  std::int64_t bytes = 0, messages = 0;
+};
+
+/// All-to-all: outgoing[r] goes to rank r; returns what every rank sent here. Counts first
+/// (MPI_Alltoall), then the points (MPI_Alltoallv).
+std::vector<Packed> exchange_all(MPI_Comm comm, const std::vector<std::vector<Packed>>& outgoing,
+                                 Traffic& traffic);
+
+/// Neighbourhood exchange over a graph communicator whose sources and destinations are both
+/// `partners`: outgoing[k] goes to partners[k]. Counts first, then the points.
+std::vector<Packed> exchange_with(MPI_Comm graph, const std::vector<std::vector<Packed>>& outgoing,
+                                  Traffic& traffic);
+
+}  // namespace horizon::detail

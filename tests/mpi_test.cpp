@@ -1,0 +1,145 @@
+// The distributed search under mpirun: for every exchange strategy and decomposition, the rows
+// gathered from all ranks equal the serial list exactly.
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include "datasets.hpp"
+#include "horizon/distributed.hpp"
+#include "horizon/search.hpp"
+
+namespace horizon::testing {
+namespace {
+
+int rank_id() {
+  int id = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &id);
+  return id;
+}
+
+int rank_count() {
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  return size;
+}
+
+// The distributed list of `data`, gathered on rank 0, compared there with the serial list; every
+// rank learns the verdict.
+bool matches_serial(const PointSet& points, const DistributedOptions& options, DistributedStats* stats = nullptr) {
+  const std::size_t n = points.size();
+  const std::size_t p = static_cast<std::size_t>(rank_count()), r = static_cast<std::size_t>(rank_id());
+  PointSet held{points.dims, {}};
+  std::vector<std::int64_t> ids;
+  if (options.exchange == Exchange::overlap) {
+    held = points;
+  } else {  // a block of the input by rank, as a parallel read would leave it
+    for (std::size_t i = n * r / p; i < n * (r + 1) / p; ++i) {
+      ids.push_back(static_cast<std::int64_t>(i));
+      for (int a = 0; a < points.dims; ++a) held.xyz.push_back(points.xyz[i * points.dims + a]);
+    }
+  }
+  const OwnedRows rows = search_distributed(MPI_COMM_WORLD, held.view(), ids, n, options, stats);
+  const NeighborList gathered = gather_rows(MPI_COMM_WORLD, rows, n, options.search.half);
+  int same = 1;
+  if (r == 0) {
+    SearchOptions serial = options.search;
+    serial.backend = Backend::serial;
+    same = gathered == search(points.view(), serial);
+  }
+  MPI_Bcast(&same, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return same == 1;
+}
+
+struct Strategy {
+  Exchange exchange;
+  Decomposition::Kind decomposition;
+};
+
+const Strategy strategies[] = {{Exchange::thesis, Decomposition::Kind::rcb},
+                               {Exchange::halo, Decomposition::Kind::rcb},
+                               {Exchange::halo, Decomposition::Kind::brick},
+                               {Exchange::overlap, Decomposition::Kind::rcb},
+                               {Exchange::overlap, Decomposition::Kind::brick}};
+
+std::string describe(const Strategy& s) {
+  return std::string(exchange_name(s.exchange)) + (s.decomposition == Decomposition::Kind::rcb ? "/rcb" : "/brick");
+}
+
+TEST(Distributed, EveryStrategyEqualsSerialOnEveryDataset) {
+  for (int dims : {2, 3})
+    for (const Dataset& data : datasets(dims))
+      for (const Strategy& s : strategies) {
+        DistributedOptions options;
+        options.search.horizon = data.horizon;
+        options.search.backend = Backend::serial;
+        options.exchange = s.exchange;
+        options.decomposition = s.decomposition;
+        EXPECT_TRUE(matches_serial(data.points, options)) << data.name << " " << dims << "-D " << describe(s);
+      }
+}
+
+TEST(Distributed, HalfListsOtherMetricsAndOpenmp) {
+  const PointSet points = clustered_cloud(4000, 5, 0.5, 3, 8);
+  for (const Strategy& s : strategies)
+    for (Metric metric : {Metric::manhattan, Metric::chebyshev}) {
+      DistributedOptions options;
+      options.search.horizon = 0.3;
+      options.search.metric = metric;
+      options.search.half = true;
+      options.search.cells_per_horizon = 2;
+      options.search.backend = Backend::openmp;
+      options.exchange = s.exchange;
+      options.decomposition = s.decomposition;
+      EXPECT_TRUE(matches_serial(points, options)) << describe(s) << " " << metric_name(metric);
+    }
+}
+
+TEST(Distributed, MoreRanksThanPointsOrCells) {
+  // 3 points, and a lattice of 8 cells: some ranks own nothing at all.
+  const PointSet few{3, {0, 0, 0, 0.5, 0, 0, 5, 5, 5}};
+  const PointSet small = lattice(2);
+  for (const Strategy& s : strategies)
+    for (const PointSet* points : {&few, &small}) {
+      DistributedOptions options;
+      options.search.horizon = 6.0;
+      options.exchange = s.exchange;
+      options.decomposition = s.decomposition;
+      EXPECT_TRUE(matches_serial(*points, options)) << describe(s);
+    }
+}
+
+TEST(Distributed, PointsOnSubdomainBorders) {
+  // A lattice whose coordinates fall exactly on brick cuts for 2, 4 and 8 slabs: spacing 1 from
+  // 0 to 16, cuts at multiples of 16/p.
+  PointSet grid{3, {}};
+  for (int k = 0; k <= 16; k += 2)
+    for (int j = 0; j <= 16; ++j)
+      for (int i = 0; i <= 16; ++i) grid.xyz.insert(grid.xyz.end(), {double(i), double(j), double(k)});
+  for (const Strategy& s : strategies) {
+    DistributedOptions options;
+    options.search.horizon = 2.0;  // exact ties at distance 2 are excluded everywhere
+    options.exchange = s.exchange;
+    options.decomposition = s.decomposition;
+    DistributedStats stats;
+    EXPECT_TRUE(matches_serial(grid, options, &stats)) << describe(s);
+    EXPECT_EQ(stats.ranks, rank_count());
+    if (rank_count() > 1 && s.exchange != Exchange::overlap) EXPECT_GT(stats.bytes_sent, 0) << describe(s);
+    if (s.exchange == Exchange::overlap) EXPECT_EQ(stats.bytes_sent, 0);
+  }
+}
+
+}  // namespace
+}  // namespace horizon::testing
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  if (horizon::testing::rank_id() != 0) {  // one report, from rank 0
+    auto& listeners = ::testing::UnitTest::GetInstance()->listeners();
+    delete listeners.Release(listeners.default_result_printer());
+  }
+  const int status = RUN_ALL_TESTS();
+  int worst = 0;
+  MPI_Allreduce(&status, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  MPI_Finalize();
+  return worst;
+}
