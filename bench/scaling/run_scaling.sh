@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # The thesis's chapter-4 study: lattice problems on p = 1..16 ranks for every exchange strategy,
 # one core per rank (serial backend). Appends one JSON line per run to OUT (horizon's --json
-# plus study, n, m, rep). Usage: bench/scaling/run_scaling.sh BUILD_DIR OUT.jsonl [MAX_RANKS]
+# plus study, n, m, rep). Usage: bench/scaling/run_scaling.sh BUILD_DIR OUT.jsonl [MAX_RANKS] [M...]
 set -u
-bin="$1/bin/horizon"; out="$2"; max_ranks="${3:-16}"
+bin="$1/bin/horizon"; out="$2"; max_ranks="${3:-16}"; shift 3 2>/dev/null || shift $#
+spacings=("${@:-1.5 3.015}"); [ $# -eq 0 ] && spacings=(1.5 3.015)
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1
 export OMPI_MCA_btl_vader_single_copy_mechanism=none
 run() {  # study n m p exchange rep
@@ -13,7 +14,7 @@ run() {  # study n m p exchange rep
     | sed "s/^{/{\"study\":\"$1\",\"n\":$2,\"m\":$3,\"rep\":$6,/" >> "$out"
 }
 ranks=(); for p in 1 2 4 8 16 32; do [ "$p" -le "$max_ranks" ] && ranks+=("$p"); done
-for m in 1.5 3.015; do
+for m in "${spacings[@]}"; do
   for n in 37 47 53 59 63 80; do
     for p in "${ranks[@]}"; do
       for x in thesis halo overlap; do
