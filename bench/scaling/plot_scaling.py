@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Turns the scaling study's JSON lines into CSV and the thesis-style plots (Fig. 4.5-4.11).
 
 Usage: plot_scaling.py RUNS.jsonl OUT_DIR [COMM_MODEL.csv]
@@ -37,9 +37,12 @@ def load(path):
                          **{f"{k}_s": v for k, v in phases.items()},
                          bytes_sent=reps[0]["bytes_sent"], messages_sent=reps[0]["messages_sent"],
                          points_per_s=reps[0]["points"] / total if total else 0))
-    base = {(r["study"], r["n"], r["m"], r["exchange"]): r["total_s"] for r in rows if r["ranks"] == 1}
+    # One-rank times: per problem for strong scaling, per study for weak scaling (n grows with p).
+    def key(r):
+        return (r["study"], r["n"] if r["study"] == "strong" else 0, r["m"], r["exchange"])
+    base = {key(r): r["total_s"] for r in rows if r["ranks"] == 1}
     for r in rows:
-        t1 = base.get((r["study"], r["n"], r["m"], r["exchange"]))
+        t1 = base.get(key(r))
         if r["study"] == "strong":
             r["speedup"] = t1 / r["total_s"] if t1 else 0
             r["efficiency"] = r["speedup"] / r["ranks"]

@@ -145,32 +145,37 @@ std::vector<Packed> halo_ghosts(const Rank& rank, const std::vector<Packed>& own
   return ghosts;
 }
 
-// Searches owned + ghosts on this node and keeps the owned rows, in global ids.
-OwnedRows search_owned(std::vector<Packed>& owned, const std::vector<Packed>& ghosts, int dims,
+// Searches owned + ghosts on this node and keeps the owned rows, in global ids. The local
+// points are ordered by global id, so local rows map to sorted global rows without a re-sort.
+OwnedRows search_owned(const std::vector<Packed>& owned, const std::vector<Packed>& ghosts, int dims,
                        const SearchOptions& options) {
-  std::sort(owned.begin(), owned.end(), [](const Packed& a, const Packed& b) { return a[3] < b[3]; });
+  std::vector<std::pair<Packed, bool>> local_points;  // (point, owned)
+  local_points.reserve(owned.size() + ghosts.size());
+  for (const Packed& p : owned) local_points.emplace_back(p, true);
+  for (const Packed& p : ghosts) local_points.emplace_back(p, false);
+  std::sort(local_points.begin(), local_points.end(),
+            [](const auto& a, const auto& b) { return a.first[3] < b.first[3]; });
   PointSet local{dims, {}};
-  std::vector<std::int64_t> global;
-  for (const std::vector<Packed>* set : std::initializer_list<const std::vector<Packed>*>{&owned, &ghosts})
-    for (const Packed& p : *set) {
-      for (int a = 0; a < dims; ++a) local.xyz.push_back(p[static_cast<std::size_t>(a)]);
-      global.push_back(static_cast<std::int64_t>(p[3]));
-    }
+  local.xyz.reserve(local_points.size() * static_cast<std::size_t>(dims));
+  std::vector<point_id> global(local_points.size());
+  for (std::size_t i = 0; i < local_points.size(); ++i) {
+    for (int a = 0; a < dims; ++a) local.xyz.push_back(local_points[i].first[static_cast<std::size_t>(a)]);
+    global[i] = static_cast<point_id>(local_points[i].first[3]);
+  }
   SearchOptions full = options;
   full.half = false;  // a half list by local ids is not one by global ids
   const NeighborList list = search(local.view(), full);
 
   OwnedRows out;
   Buffer<std::int64_t> offsets{0};
+  offsets.reserve(owned.size() + 1);
   Buffer<point_id> indices;
-  for (std::size_t i = 0; i < owned.size(); ++i) {
-    const std::int64_t self = global[i];
-    out.ids.push_back(self);
-    const std::size_t start = indices.size();
+  for (std::size_t i = 0; i < local_points.size(); ++i) {
+    if (!local_points[i].second) continue;
+    out.ids.push_back(global[i]);
     for (point_id j : list.row(i))
-      if (!options.half || global[static_cast<std::size_t>(j)] > self)
-        indices.push_back(static_cast<point_id>(global[static_cast<std::size_t>(j)]));
-    if (options.sort_rows) std::sort(indices.begin() + static_cast<std::ptrdiff_t>(start), indices.end());
+      if (!options.half || global[static_cast<std::size_t>(j)] > global[i])
+        indices.push_back(global[static_cast<std::size_t>(j)]);
     offsets.push_back(static_cast<std::int64_t>(indices.size()));
   }
   out.rows = NeighborList(std::move(offsets), std::move(indices), options.half);
@@ -226,7 +231,7 @@ OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<
           const Packed p = pack(points, i, ids[i]);
           outgoing[static_cast<std::size_t>(d.owner(p.data()))].push_back(p);
         }
-        owned = detail::exchange_all(comm, outgoing, traffic);
+        owned = detail::exchange_all(comm, outgoing, traffic);  // migration to owners
         seconds[1] = clock.lap();
         ghosts = halo_ghosts(rank, owned, d, dims, reach, traffic);
         seconds[2] = clock.lap();

@@ -31,13 +31,15 @@ struct Layout {
   std::vector<Packed> send;
 };
 
-Layout pack(const std::vector<std::vector<Packed>>& outgoing, Traffic& traffic) {
+// Counts what goes to other ranks (`self` is this rank's index in outgoing, or -1).
+Layout pack(const std::vector<std::vector<Packed>>& outgoing, int self, Traffic& traffic) {
   Layout l;
-  for (const auto& out : outgoing) {
+  for (std::size_t r = 0; r < outgoing.size(); ++r) {
+    const auto& out = outgoing[r];
     l.send_displs.push_back(as_count(l.send.size()));
     l.send_counts.push_back(as_count(out.size()));
     l.send.insert(l.send.end(), out.begin(), out.end());
-    if (!out.empty()) {
+    if (!out.empty() && static_cast<int>(r) != self) {
       traffic.messages += 1;
       traffic.bytes += static_cast<std::int64_t>(out.size() * sizeof(Packed));
     }
@@ -58,7 +60,9 @@ void displace(Layout& l) {
 
 std::vector<Packed> exchange_all(MPI_Comm comm, const std::vector<std::vector<Packed>>& outgoing,
                                  Traffic& traffic) {
-  Layout l = pack(outgoing, traffic);
+  int self = 0;
+  MPI_Comm_rank(comm, &self);
+  Layout l = pack(outgoing, self, traffic);
   l.recv_counts.resize(outgoing.size());
   MPI_Alltoall(l.send_counts.data(), 1, MPI_INT, l.recv_counts.data(), 1, MPI_INT, comm);
   displace(l);
@@ -70,7 +74,7 @@ std::vector<Packed> exchange_all(MPI_Comm comm, const std::vector<std::vector<Pa
 
 std::vector<Packed> exchange_with(MPI_Comm graph, const std::vector<std::vector<Packed>>& outgoing,
                                   Traffic& traffic) {
-  Layout l = pack(outgoing, traffic);
+  Layout l = pack(outgoing, -1, traffic);
   l.recv_counts.resize(outgoing.size());
   MPI_Neighbor_alltoall(l.send_counts.data(), 1, MPI_INT, l.recv_counts.data(), 1, MPI_INT, graph);
   displace(l);
