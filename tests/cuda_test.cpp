@@ -54,6 +54,14 @@ TEST(Cuda, RowsOfEveryLengthAreSorted) {
   }
 }
 
+TEST(Cuda, QueriesMatchTheCpu) {
+  REQUIRE_GPU();
+  const PointSet points = random_cloud(30000, 3, 2);
+  SearchOptions cuda = options_for(0.5, Backend::cuda), cpu = options_for(0.5, Backend::serial);
+  cuda.queries = cpu.queries = 12345;
+  EXPECT_EQ(search(points.view(), cuda), search(points.view(), cpu));
+}
+
 TEST(Cuda, LatticeMatchesClosedFormAtScale) {
   REQUIRE_GPU();
   for (double m : {1.5, 3.015}) {

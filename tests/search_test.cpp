@@ -92,6 +92,24 @@ TEST(Options, UnsortedRowsHoldTheSameFamilies) {
   }
 }
 
+TEST(Options, QueriesGetRowsAndTheRestAreReferencesOnly) {
+  const PointSet points = random_cloud(4000, 3, 12);
+  for (bool half : {false, true})
+    for (Backend backend : {Backend::serial, Backend::openmp}) {
+      SearchOptions options = options_for(0.9, backend);
+      options.half = half;
+      const NeighborList all = search(points.view(), options);
+      options.queries = 1500;
+      const NeighborList some = search(points.view(), options);
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        if (i < 1500)
+          EXPECT_TRUE(std::equal(all.row(i).begin(), all.row(i).end(), some.row(i).begin(), some.row(i).end()));
+        else
+          EXPECT_EQ(some.row_size(i), 0u);
+      }
+    }
+}
+
 TEST(Options, HalfListHoldsEachPairOnce) {
   const PointSet points = random_cloud(4000, 3, 2);
   SearchOptions options = options_for(0.9);
@@ -127,6 +145,9 @@ TEST(Errors, BadInputIsNamed) {
     EXPECT_THROW(search(points.view(), options_for(bad)), Error) << bad;
   EXPECT_THROW(search(points.view(), options_for(1.0, Backend::serial, 4)), Error);
   EXPECT_THROW(search(PointView(points.xyz.data(), 1, 4), options_for(1.0)), Error);
+  SearchOptions too_many = options_for(1.0);
+  too_many.queries = 3;
+  EXPECT_THROW(search(points.view(), too_many), Error);
 }
 
 TEST(Errors, EmptyInputGivesAnEmptyList) {

@@ -31,6 +31,9 @@ struct SearchOptions {
   Backend backend = Backend::automatic;
   int threads = 0;                    ///< openmp threads; 0 = all cores
   int device = 0;                     ///< cuda device
+  /// Only points 0 .. queries-1 get families (0: all); the others are searched but get empty
+  /// rows. The distributed layer puts its owned points first and its ghosts after.
+  std::size_t queries = 0;
   std::int64_t gpu_batch_entries = 0; ///< cuda host API: most list entries per batch (0: as fit)
 };
 

@@ -57,12 +57,14 @@ void visit(const CellIndex& index, const SearchOptions& options, CellRun run,
                                   index.coords(2).data(), order,
                                   metric_threshold(M, options.horizon)};
   std::vector<CellIndex::Range> rows(static_cast<std::size_t>(index.max_stencil_rows()));
+  const std::size_t queries = options.queries ? options.queries : index.point_count();
 
   for (std::size_t c = run.first; c < run.last; ++c) {
     const int row_count = index.stencil(c, rows.data());
     const auto [first, last] = index.points_of(c);
     for (std::int64_t p = first; p < last; ++p) {
       const point_id self = order[p];
+      if (static_cast<std::size_t>(self) >= queries) continue;  // offsets[self + 1] stays 0
       const double xi = test.x[p], yi = test.y[p], zi = test.z[p];
       if constexpr (!Fill) {
         std::int64_t found = 0;

@@ -37,6 +37,9 @@ bool backend_available(Backend backend) {
 NeighborList search(PointView points, const SearchOptions& options, SearchStats* stats) {
   validate(points);
   validate_horizon(options.horizon, options.cells_per_horizon);
+  if (options.queries > points.size())
+    throw Error("queries (" + std::to_string(options.queries) + ") exceeds the " + std::to_string(points.size()) +
+                " points");
   SearchStats local;
   SearchStats& out = stats ? *stats : local;
   out = SearchStats{};

@@ -145,37 +145,51 @@ std::vector<Packed> halo_ghosts(const Rank& rank, const std::vector<Packed>& own
   return ghosts;
 }
 
-// Searches owned + ghosts on this node and keeps the owned rows, in global ids. The local
-// points are ordered by global id, so local rows map to sorted global rows without a re-sort.
-OwnedRows search_owned(const std::vector<Packed>& owned, const std::vector<Packed>& ghosts, int dims,
+// Searches owned + ghosts on this node; only owned points get rows, in global ids. Owned points
+// come first and ghosts after, each run ordered by global id, so a row maps to two sorted runs
+// of global ids that one merge sorts.
+OwnedRows search_owned(std::vector<Packed>& owned, std::vector<Packed>& ghosts, int dims,
                        const SearchOptions& options) {
-  std::vector<std::pair<Packed, bool>> local_points;  // (point, owned)
-  local_points.reserve(owned.size() + ghosts.size());
-  for (const Packed& p : owned) local_points.emplace_back(p, true);
-  for (const Packed& p : ghosts) local_points.emplace_back(p, false);
-  std::sort(local_points.begin(), local_points.end(),
-            [](const auto& a, const auto& b) { return a.first[3] < b.first[3]; });
+  const auto by_id = [](const Packed& a, const Packed& b) { return a[3] < b[3]; };
+  std::sort(owned.begin(), owned.end(), by_id);
+  std::sort(ghosts.begin(), ghosts.end(), by_id);
   PointSet local{dims, {}};
-  local.xyz.reserve(local_points.size() * static_cast<std::size_t>(dims));
-  std::vector<point_id> global(local_points.size());
-  for (std::size_t i = 0; i < local_points.size(); ++i) {
-    for (int a = 0; a < dims; ++a) local.xyz.push_back(local_points[i].first[static_cast<std::size_t>(a)]);
-    global[i] = static_cast<point_id>(local_points[i].first[3]);
-  }
-  SearchOptions full = options;
-  full.half = false;  // a half list by local ids is not one by global ids
-  const NeighborList list = search(local.view(), full);
-
+  local.xyz.reserve((owned.size() + ghosts.size()) * static_cast<std::size_t>(dims));
+  std::vector<point_id> global;
+  global.reserve(owned.size() + ghosts.size());
+  for (const std::vector<Packed>* set : std::initializer_list<const std::vector<Packed>*>{&owned, &ghosts})
+    for (const Packed& p : *set) {
+      for (int a = 0; a < dims; ++a) local.xyz.push_back(p[static_cast<std::size_t>(a)]);
+      global.push_back(static_cast<point_id>(p[3]));
+    }
+  SearchOptions local_options = options;
+  local_options.half = false;  // a half list by local ids is not one by global ids
+  local_options.queries = owned.size();
   OwnedRows out;
+  if (owned.empty()) {
+    out.rows = NeighborList({0}, {}, options.half);
+    return out;
+  }
+  const NeighborList list = search(local.view(), local_options);
+
   Buffer<std::int64_t> offsets{0};
   offsets.reserve(owned.size() + 1);
   Buffer<point_id> indices;
-  for (std::size_t i = 0; i < local_points.size(); ++i) {
-    if (!local_points[i].second) continue;
+  indices.reserve(static_cast<std::size_t>(options.half ? list.total() / 2 + 1 : list.total()));
+  const auto owned_count = static_cast<point_id>(owned.size());
+  for (std::size_t i = 0; i < owned.size(); ++i) {
     out.ids.push_back(global[i]);
-    for (point_id j : list.row(i))
-      if (!options.half || global[static_cast<std::size_t>(j)] > global[i])
-        indices.push_back(global[static_cast<std::size_t>(j)]);
+    const std::size_t start = indices.size();
+    std::size_t ghosts_from = start;
+    for (point_id j : list.row(i)) {
+      const point_id g = global[static_cast<std::size_t>(j)];
+      if (options.half && g <= global[i]) continue;
+      if (j < owned_count) ghosts_from = indices.size() + 1;
+      indices.push_back(g);
+    }
+    if (options.sort_rows)
+      std::inplace_merge(indices.begin() + static_cast<std::ptrdiff_t>(start),
+                         indices.begin() + static_cast<std::ptrdiff_t>(ghosts_from), indices.end());
     offsets.push_back(static_cast<std::int64_t>(indices.size()));
   }
   out.rows = NeighborList(std::move(offsets), std::move(indices), options.half);

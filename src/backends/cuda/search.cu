@@ -142,7 +142,7 @@ __global__ void cell_starts(const std::int64_t* sorted_keys, std::int64_t n, std
 /// Points sorted by cell on the GPU: everything the build kernels read, by value.
 struct DeviceIndexView {
   GridParams grid;
-  std::int64_t n;
+  std::int64_t n, queries;  // points 0 .. queries-1 get families
   const double *x, *y, *z;
   const point_id* order;
   const std::int64_t* start;              // dense: linear id -> first sorted position
@@ -202,8 +202,8 @@ public:
     check_launch("gather_coords");
   }
 
-  DeviceIndexView view() const {
-    return {params_of(grid_), n_, x_.get(), y_.get(), z_.get(), order_.get(), start_.get(),
+  DeviceIndexView view(std::size_t queries) const {
+    return {params_of(grid_), n_, queries ? static_cast<std::int64_t>(queries) : n_, x_.get(), y_.get(), z_.get(), order_.get(), start_.get(),
             kx_.get(), ky_.get(), kz_.get()};
   }
 
@@ -301,6 +301,10 @@ __global__ void families(DeviceIndexView ix, double threshold, std::int64_t* cou
   const std::int64_t p = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
   if (p >= ix.n) return;
   const point_id self = ix.order[p];
+  if (self >= ix.queries) {
+    if (!Fill) counts[self] = 0;
+    return;
+  }
   if (Fill && (self < first_id || self >= last_id)) return;
   const double xi = ix.x[p], yi = ix.y[p], zi = ix.z[p];
   const std::int64_t cx = ix.grid.cell_of(xi, 0), cy = ix.grid.cell_of(yi, 1);
@@ -364,7 +368,7 @@ DeviceArray<std::int64_t> count_offsets(const DeviceIndex& index, const SearchOp
                                         std::size_t count, cudaStream_t stream, MemoryMeter& meter,
                                         std::int64_t& total, std::int64_t& longest) {
   DeviceArray<std::int64_t> counts(count, meter), offsets(count + 1, meter);
-  launch_families<false>(index.view(), options, counts.get(), nullptr, nullptr, 0, 0, 0, stream);
+  launch_families<false>(index.view(options.queries), options, counts.get(), nullptr, nullptr, 0, 0, 0, stream);
   HORIZON_CUDA_CHECK(cudaMemsetAsync(offsets.get(), 0, sizeof(std::int64_t), stream));
   std::size_t temp_bytes = 0;
   HORIZON_CUDA_CHECK(cub::DeviceScan::InclusiveSum(nullptr, temp_bytes, counts.get(), offsets.get() + 1,
@@ -493,7 +497,7 @@ point_id* fill_rows(const DeviceIndex& index, const SearchOptions& options, cons
                     std::int64_t base, std::int64_t entries, std::int64_t longest, point_id first,
                     point_id last, point_id* rows_out, point_id* spare, cudaStream_t stream,
                     MemoryMeter& meter) {
-  launch_families<true>(index.view(), options, nullptr, offsets, rows_out, first, last, base, stream);
+  launch_families<true>(index.view(options.queries), options, nullptr, offsets, rows_out, first, last, base, stream);
   if (!options.sort_rows || entries == 0) return rows_out;
   const std::int64_t rows = last - first;
   if (longest <= block_row) {
