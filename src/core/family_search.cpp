@@ -1,6 +1,7 @@
 #include "family_search.hpp"
 
 #include <hwy/contrib/sort/vqsort.h>
+#include <immintrin.h>
 
 #include <algorithm>
 #include <bit>
@@ -27,6 +28,29 @@ void sort_family(point_id* first, point_id* last) {
   if (std::is_sorted(first, last)) return;
   static const hwy::Sorter sorter;
   sorter(first, static_cast<std::size_t>(last - first), hwy::SortAscending());
+}
+
+/// Appends order[t] for every t < length with hit[t] != 0 (hit is zero beyond length); returns
+/// the new end. With AVX-512 a masked compress-store writes 16 at a time without a branch per
+/// hit (measured on the CI machine, fill pass, random cloud of 10^6 points: 0.39 -> 0.27 s at
+/// m = 1.5, 1.65 -> 1.20 s at m = 3.015); elsewhere the set bytes are walked eight at a time.
+point_id* compress(const std::uint8_t* hit, int length, const point_id* order, point_id* out) {
+#if defined(__AVX512F__) && defined(__AVX512BW__) && defined(__AVX512VL__)
+  for (int w = 0; w < length; w += 16) {
+    const __mmask16 mask = _mm_test_epi8_mask(_mm_loadu_si128(reinterpret_cast<const __m128i*>(hit + w)),
+                                              _mm_set1_epi8(1));
+    const __m512i ids = _mm512_maskz_loadu_epi32(mask, order + w);  // masked lanes never fault
+    _mm512_mask_compressstoreu_epi32(out, mask, ids);
+    out += std::popcount(static_cast<unsigned>(mask));
+  }
+#else
+  for (int w = 0; w < length; w += 8) {
+    std::uint64_t bytes;
+    std::memcpy(&bytes, hit + w, 8);
+    for (; bytes; bytes &= bytes - 1) *out++ = order[w + (std::countr_zero(bytes) >> 3)];
+  }
+#endif
+  return out;
 }
 
 /// The test of point p against candidate q: accumulated distance below the threshold, and q is
@@ -58,12 +82,20 @@ void visit(const CellIndex& index, const SearchOptions& options, CellRun run,
                                   metric_threshold(M, options.horizon)};
   std::vector<CellIndex::Range> rows(static_cast<std::size_t>(index.max_stencil_rows()));
   const std::size_t queries = options.queries ? options.queries : index.point_count();
+  const auto points = static_cast<std::int64_t>(index.point_count());
+  constexpr std::int64_t lookahead = 16;
 
   for (std::size_t c = run.first; c < run.last; ++c) {
     const int row_count = index.stencil(c, rows.data());
     const auto [first, last] = index.points_of(c);
     for (std::int64_t p = first; p < last; ++p) {
       const point_id self = order[p];
+      // Rows are placed by input id: for input in random order every point's row (and its
+      // offset) is a cache miss. Fetch them a few points ahead (measured: the fill pass on a
+      // random cloud of 10^6 points, m = 1.5, went from 0.69 s to 0.39 s).
+      if (p + 2 * lookahead < points) __builtin_prefetch(&offsets[order[p + 2 * lookahead]], 1);
+      if constexpr (Fill)
+        if (p + lookahead < points) __builtin_prefetch(indices + offsets[order[p + lookahead]], 1);
       if (static_cast<std::size_t>(self) >= queries) continue;  // offsets[self + 1] stays 0
       const double xi = test.x[p], yi = test.y[p], zi = test.z[p];
       if constexpr (!Fill) {
@@ -79,11 +111,7 @@ void visit(const CellIndex& index, const SearchOptions& options, CellRun run,
             const int length = static_cast<int>(std::min<std::int64_t>(64, rows[r].end - block));
             alignas(64) std::uint8_t hit[64] = {};
             for (int t = 0; t < length; ++t) hit[t] = test(p, self, xi, yi, zi, block + t);
-            for (int w = 0; w < length; w += 8) {
-              std::uint64_t bytes;
-              std::memcpy(&bytes, hit + w, 8);
-              for (; bytes; bytes &= bytes - 1) *out++ = order[block + w + (std::countr_zero(bytes) >> 3)];
-            }
+            out = compress(hit, length, order + block, out);
           }
         }
         if (options.sort_rows) sort_family(indices + offsets[self], out);
