@@ -490,6 +490,101 @@ void sort_rows_on_chip(point_id* rows, const std::int64_t* offsets, std::int64_t
   }
 }
 
+// ---- Fused fill and sort for rows of up to 256 ------------------------------------------------
+// A warp per point: lanes test 32 consecutive candidates at once (coalesced loads), ballot the
+// hits into a row staged in shared memory, sort it in registers (cub::WarpMergeSort) and store it
+// with coalesced writes. Nsight Compute on the two-kernel path (n = 200, m = 3.015, H100): the
+// thread-per-point fill spent 21.5 ms on uncoalesced row stores, the warp sort 10.8 ms on
+// blocked loads.
+
+template <Metric M, int D, bool Half, int Items>
+__global__ void __launch_bounds__(block_size) fill_sorted_rows(DeviceIndexView ix, double threshold,
+                                                               const std::int64_t* offsets, point_id* out,
+                                                               point_id first_id, point_id last_id,
+                                                               std::int64_t base) {
+  constexpr int warps = block_size / 32, capacity = 32 * Items;
+  using WarpSort = cub::WarpMergeSort<point_id, Items, 32>;
+  __shared__ typename WarpSort::TempStorage temp[warps];
+  __shared__ point_id staged[warps][capacity];
+  const int warp = threadIdx.x / 32, lane = threadIdx.x % 32;
+  const std::int64_t p = blockIdx.x * static_cast<std::int64_t>(warps) + warp;
+  if (p >= ix.n) return;
+  const point_id self = ix.order[p];
+  if (self >= ix.queries || self < first_id || self >= last_id) return;  // uniform across the warp
+  const double xi = ix.x[p], yi = ix.y[p], zi = ix.z[p];
+  const std::int64_t cx = ix.grid.cell_of(xi, 0), cy = ix.grid.cell_of(yi, 1);
+  const std::int64_t cz = D == 3 ? ix.grid.cell_of(zi, 2) : 0;
+  const int k = ix.grid.k, reach_z = D == 3 ? k : 0;
+  point_id* row = staged[warp];
+  int found = 0;
+  for (int dz = -reach_z; dz <= reach_z; ++dz)
+    for (int dy = -k; dy <= k; ++dy) {
+      std::int64_t begin, end;
+      ix.row(cx, cy + dy, cz + dz, begin, end);
+      for (std::int64_t q0 = begin; q0 < end; q0 += 32) {
+        const std::int64_t q = q0 + lane;
+        bool hit = false;
+        point_id other = 0;
+        if (q < end) {
+          const double d = metric_accumulate<M>(xi - ix.x[q], yi - ix.y[q], D == 3 ? zi - ix.z[q] : 0.0);
+          other = ix.order[q];
+          hit = d < threshold && (Half ? other > self : q != p);
+        }
+        const unsigned ballot = __ballot_sync(0xffffffffu, hit);
+        if (hit) row[found + __popc(ballot & ((1u << lane) - 1))] = other;
+        found += __popc(ballot);
+      }
+    }
+  __syncwarp();
+  point_id keys[Items];
+  for (int i = 0; i < Items; ++i) {
+    const int at = lane * Items + i;
+    keys[i] = at < found ? row[at] : INT_MAX;
+  }
+  WarpSort(temp[warp]).Sort(keys, IdLess());
+  __syncwarp();
+  for (int i = 0; i < Items; ++i) row[lane * Items + i] = keys[i];
+  __syncwarp();
+  point_id* destination = out + (offsets[self] - base);
+  for (int at = lane; at < found; at += 32) destination[at] = row[at];
+}
+
+template <Metric M, int D, bool Half>
+void launch_fused(const DeviceIndexView& ix, double threshold, const std::int64_t* offsets, point_id* out,
+                  point_id first, point_id last, std::int64_t base, std::int64_t longest, cudaStream_t stream) {
+  const unsigned blocks = blocks_for(static_cast<std::size_t>(ix.n) * 32);
+  if (longest <= 64)
+    fill_sorted_rows<M, D, Half, 2><<<blocks, block_size, 0, stream>>>(ix, threshold, offsets, out, first, last, base);
+  else if (longest <= 128)
+    fill_sorted_rows<M, D, Half, 4><<<blocks, block_size, 0, stream>>>(ix, threshold, offsets, out, first, last, base);
+  else
+    fill_sorted_rows<M, D, Half, 8><<<blocks, block_size, 0, stream>>>(ix, threshold, offsets, out, first, last, base);
+  check_launch("fill_sorted_rows");
+}
+
+template <Metric M>
+void launch_fused_metric(const DeviceIndexView& ix, const SearchOptions& o, const std::int64_t* offsets,
+                         point_id* out, point_id first, point_id last, std::int64_t base, std::int64_t longest,
+                         cudaStream_t stream) {
+  const double threshold = metric_threshold(M, o.horizon);
+  if (ix.grid.dims == 3) {
+    if (o.half) launch_fused<M, 3, true>(ix, threshold, offsets, out, first, last, base, longest, stream);
+    else launch_fused<M, 3, false>(ix, threshold, offsets, out, first, last, base, longest, stream);
+  } else {
+    if (o.half) launch_fused<M, 2, true>(ix, threshold, offsets, out, first, last, base, longest, stream);
+    else launch_fused<M, 2, false>(ix, threshold, offsets, out, first, last, base, longest, stream);
+  }
+}
+
+void fill_sorted(const DeviceIndexView& ix, const SearchOptions& o, const std::int64_t* offsets, point_id* out,
+                 point_id first, point_id last, std::int64_t base, std::int64_t longest, cudaStream_t stream) {
+  switch (o.metric) {
+    case Metric::euclidean: return launch_fused_metric<Metric::euclidean>(ix, o, offsets, out, first, last, base, longest, stream);
+    case Metric::manhattan: return launch_fused_metric<Metric::manhattan>(ix, o, offsets, out, first, last, base, longest, stream);
+    case Metric::chebyshev: return launch_fused_metric<Metric::chebyshev>(ix, o, offsets, out, first, last, base, longest, stream);
+  }
+}
+
 /// Fills and sorts the rows of ids [first, last): their entries go to rows_out, which holds
 /// offsets[last] - offsets[first] entries; `spare` is as large when a row is longer than
 /// sortable on chip (the segmented sort's second buffer). Returns the buffer holding the result.
@@ -497,6 +592,10 @@ point_id* fill_rows(const DeviceIndex& index, const SearchOptions& options, cons
                     std::int64_t base, std::int64_t entries, std::int64_t longest, point_id first,
                     point_id last, point_id* rows_out, point_id* spare, cudaStream_t stream,
                     MemoryMeter& meter) {
+  if (options.sort_rows && longest <= warp_row) {
+    if (entries > 0) fill_sorted(index.view(options.queries), options, offsets, rows_out, first, last, base, longest, stream);
+    return rows_out;
+  }
   launch_families<true>(index.view(options.queries), options, nullptr, offsets, rows_out, first, last, base, stream);
   if (!options.sort_rows || entries == 0) return rows_out;
   const std::int64_t rows = last - first;
