@@ -408,6 +408,7 @@ std::size_t sort_scratch_bytes(std::int64_t entries, std::int64_t rows, const st
 // took 0.59 s for the 8 M rows of ~120 ids of lattice n = 200, m = 3.015 on an H100, against
 // 0.028 s to count and fill them; it remains the path for rows longer than 2048.
 
+constexpr int fused_min = 64;
 constexpr int thread_row = 32, warp_row = 256, block_items = 8, block_row = block_size * block_items;
 
 struct IdLess {
@@ -490,7 +491,7 @@ void sort_rows_on_chip(point_id* rows, const std::int64_t* offsets, std::int64_t
   }
 }
 
-// ---- Fused fill and sort for rows of up to 256 ------------------------------------------------
+// ---- Fused fill and sort for rows of 65 to 256 ------------------------------------------------
 // A warp per point: lanes test 32 consecutive candidates at once (coalesced loads), ballot the
 // hits into a row staged in shared memory, sort it in registers (cub::WarpMergeSort) and store it
 // with coalesced writes. Nsight Compute on the two-kernel path (n = 200, m = 3.015, H100): the
@@ -553,9 +554,7 @@ template <Metric M, int D, bool Half>
 void launch_fused(const DeviceIndexView& ix, double threshold, const std::int64_t* offsets, point_id* out,
                   point_id first, point_id last, std::int64_t base, std::int64_t longest, cudaStream_t stream) {
   const unsigned blocks = blocks_for(static_cast<std::size_t>(ix.n) * 32);
-  if (longest <= 64)
-    fill_sorted_rows<M, D, Half, 2><<<blocks, block_size, 0, stream>>>(ix, threshold, offsets, out, first, last, base);
-  else if (longest <= 128)
+  if (longest <= 128)
     fill_sorted_rows<M, D, Half, 4><<<blocks, block_size, 0, stream>>>(ix, threshold, offsets, out, first, last, base);
   else
     fill_sorted_rows<M, D, Half, 8><<<blocks, block_size, 0, stream>>>(ix, threshold, offsets, out, first, last, base);
@@ -592,7 +591,10 @@ point_id* fill_rows(const DeviceIndex& index, const SearchOptions& options, cons
                     std::int64_t base, std::int64_t entries, std::int64_t longest, point_id first,
                     point_id last, point_id* rows_out, point_id* spare, cudaStream_t stream,
                     MemoryMeter& meter) {
-  if (options.sort_rows && longest <= warp_row) {
+  // Rows of up to 64 are cheaper with a thread per point (measured, lattice n = 400, m = 1.5:
+  // 0.074 s that way, 0.166 s with a warp per point); longer ones with the fused kernel
+  // (m = 3.015: 0.341 -> 0.302 s).
+  if (options.sort_rows && longest > fused_min && longest <= warp_row) {
     if (entries > 0) fill_sorted(index.view(options.queries), options, offsets, rows_out, first, last, base, longest, stream);
     return rows_out;
   }
