@@ -33,6 +33,14 @@ CellIndex::CellIndex(PointView points, const Grid& grid) : grid_(grid) {
     for (std::size_t i = 0; i < n; ++i)
       order_[static_cast<std::size_t>(next[static_cast<std::size_t>(id[i])]++)] =
           static_cast<point_id>(i);
+    // Occupied cells: the non-empty entries of the table, x fastest, as in the sort.
+    for (std::size_t c = 0; c < cells; ++c) {
+      if (start_by_id_[c + 1] == start_by_id_[c]) continue;
+      const auto linear = static_cast<std::int64_t>(c);
+      cell_coord_.push_back({linear / (grid_.cells[0] * grid_.cells[1]),
+                             linear / grid_.cells[0] % grid_.cells[1], linear % grid_.cells[0]});
+      cell_begin_.push_back(start_by_id_[c]);
+    }
   } else {
     // Sparse: sort (cz, cy, cx, id) tuples; memory stays O(N) whatever the extent.
     std::vector<std::array<std::int64_t, 4>> keys(n);
@@ -41,25 +49,20 @@ CellIndex::CellIndex(PointView points, const Grid& grid) : grid_(grid) {
       keys[i] = {c[2], c[1], c[0], static_cast<std::int64_t>(i)};
     }
     std::sort(keys.begin(), keys.end());
-    for (std::size_t p = 0; p < n; ++p) order_[p] = static_cast<point_id>(keys[p][3]);
+    for (std::size_t p = 0; p < n; ++p) {
+      order_[p] = static_cast<point_id>(keys[p][3]);
+      const std::array<std::int64_t, 3> cell{keys[p][0], keys[p][1], keys[p][2]};
+      if (p == 0 || cell != cell_coord_.back()) {
+        cell_coord_.push_back(cell);
+        cell_begin_.push_back(static_cast<std::int64_t>(p));
+      }
+    }
   }
+  cell_begin_.push_back(static_cast<std::int64_t>(n));
 
   for (int a = 0; a < 3; ++a) sorted_[a].resize(n, 0.0);
   for (std::size_t p = 0; p < n; ++p)
     for (int a = 0; a < grid_.dims; ++a) sorted_[a][p] = points(order_[p], a);
-
-  // Occupied cells, in sort order, with their (cz, cy, cx) and first sorted position.
-  std::array<std::int64_t, 3> previous{-1, -1, -1};
-  for (std::size_t p = 0; p < n; ++p) {
-    const auto c = cell_of_point(points, grid_, static_cast<std::size_t>(order_[p]));
-    const std::array<std::int64_t, 3> key{c[2], c[1], c[0]};
-    if (p == 0 || key != previous) {
-      cell_coord_.push_back(key);
-      cell_begin_.push_back(static_cast<std::int64_t>(p));
-      previous = key;
-    }
-  }
-  cell_begin_.push_back(static_cast<std::int64_t>(n));
 }
 
 int CellIndex::max_stencil_rows() const {
