@@ -1,7 +1,9 @@
 #include "family_search.hpp"
 
 #include <hwy/contrib/sort/vqsort.h>
+#if defined(__AVX512F__)
 #include <immintrin.h>
+#endif
 
 #include <algorithm>
 #include <bit>
