@@ -1,0 +1,273 @@
+#pragma once
+// Included by search.cu only (one translation unit): definitions in an anonymous namespace.
+// Binning (thesis §5.2's binning kernel): the grid from a CUB reduction of the bounds, points
+// sorted by cell with CUB radix sort, a cell start table (dense grids) or sorted cell
+// coordinates (sparse grids), and the coordinates gathered in sorted order.
+#include <cub/cub.cuh>
+#include <thrust/iterator/counting_iterator.h>
+#include <thrust/iterator/transform_iterator.h>
+
+#include "device_memory.hpp"
+#include "horizon/grid.hpp"
+#include "horizon/search.hpp"
+#include "launch.cuh"
+
+namespace horizon::detail {
+namespace {
+
+struct Box {
+  double lo[3], hi[3];
+};
+
+struct PointBox {
+  const double* xyz;
+  int dims;
+  __host__ __device__ Box operator()(std::int64_t i) const {
+    Box b{{0, 0, 0}, {0, 0, 0}};
+    for (int a = 0; a < dims; ++a) b.lo[a] = b.hi[a] = xyz[i * dims + a];
+    return b;
+  }
+};
+
+struct MergeBoxes {
+  __host__ __device__ Box operator()(const Box& a, const Box& b) const {
+    Box m;
+    for (int d = 0; d < 3; ++d) {
+      m.lo[d] = fmin(a.lo[d], b.lo[d]);
+      m.hi[d] = fmax(a.hi[d], b.hi[d]);
+    }
+    return m;
+  }
+};
+
+/// The grid's parameters, by value in every kernel.
+struct GridParams {
+  double origin[3];
+  double side;
+  std::int64_t cells[3];
+  int k, dims;
+  bool dense;
+
+  __device__ std::int64_t cell_of(double x, int axis) const {
+    return static_cast<std::int64_t>(floor((x - origin[axis]) / side)) + k;
+  }
+  __device__ std::int64_t linear(std::int64_t cx, std::int64_t cy, std::int64_t cz) const {
+    return cx + cells[0] * (cy + cells[1] * cz);
+  }
+};
+
+GridParams params_of(const Grid& g) {
+  GridParams p{};
+  for (int a = 0; a < 3; ++a) {
+    p.origin[a] = g.origin[a];
+    p.cells[a] = g.cells[a];
+  }
+  p.side = g.cell_side;
+  p.k = g.cells_per_horizon;
+  p.dims = g.dims;
+  p.dense = g.dense;
+  return p;
+}
+
+__global__ void cell_keys(const double* xyz, std::int64_t n, GridParams g, std::int64_t* linear,
+                          std::int64_t* kx, std::int64_t* ky, std::int64_t* kz, point_id* ids) {
+  const std::int64_t i = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
+  if (i >= n) return;
+  std::int64_t c[3] = {0, 0, 0};
+  for (int a = 0; a < g.dims; ++a) c[a] = g.cell_of(xyz[i * g.dims + a], a);
+  if (g.dense) {
+    linear[i] = g.linear(c[0], c[1], c[2]);
+  } else {
+    kx[i] = c[0];
+    ky[i] = c[1];
+    kz[i] = c[2];
+  }
+  ids[i] = static_cast<point_id>(i);
+}
+
+template <typename T>
+__global__ void gather(const T* from, const point_id* order, std::int64_t n, T* to) {
+  const std::int64_t p = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
+  if (p < n) to[p] = from[order[p]];
+}
+
+__global__ void gather_coords(const double* xyz, int dims, const point_id* order, std::int64_t n,
+                              double* x, double* y, double* z) {
+  const std::int64_t p = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
+  if (p >= n) return;
+  const std::int64_t i = order[p];
+  x[p] = xyz[i * dims];
+  y[p] = xyz[i * dims + 1];
+  z[p] = dims == 3 ? xyz[i * dims + 2] : 0.0;
+}
+
+template <typename T>
+__device__ std::int64_t lower_bound(const T* sorted, std::int64_t n, T value) {
+  std::int64_t lo = 0, hi = n;
+  while (lo < hi) {
+    const std::int64_t mid = (lo + hi) / 2;
+    if (sorted[mid] < value) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo;
+}
+
+// start[c] = first sorted position of a cell with linear id >= c.
+__global__ void cell_starts(const std::int64_t* sorted_keys, std::int64_t n, std::int64_t cells,
+                            std::int64_t* start) {
+  const std::int64_t c = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
+  if (c <= cells) start[c] = lower_bound(sorted_keys, n, c);
+}
+
+/// Points sorted by cell on the GPU: everything the build kernels read, by value.
+struct DeviceIndexView {
+  GridParams grid;
+  std::int64_t n, queries;  // points 0 .. queries-1 get families
+  const double *x, *y, *z;
+  const point_id* order;
+  const std::int64_t* start;              // dense: linear id -> first sorted position
+  const std::int64_t *kx, *ky, *kz;       // sparse: sorted cell coordinates per point
+
+  // Sorted positions of the cells (cx-k .. cx+k, cy, cz).
+  __device__ void row(std::int64_t cx, std::int64_t cy, std::int64_t cz, std::int64_t& begin,
+                      std::int64_t& end) const {
+    const int k = grid.k;
+    if (grid.dense) {
+      begin = start[grid.linear(cx - k, cy, cz)];
+      end = start[grid.linear(cx + k, cy, cz) + 1];
+      return;
+    }
+    begin = sparse_bound(cz, cy, cx - k);
+    end = sparse_bound(cz, cy, cx + k + 1);
+  }
+  // First sorted position whose (kz, ky, kx) is not below (cz, cy, cx).
+  __device__ std::int64_t sparse_bound(std::int64_t cz, std::int64_t cy, std::int64_t cx) const {
+    std::int64_t lo = 0, hi = n;
+    while (lo < hi) {
+      const std::int64_t mid = (lo + hi) / 2;
+      const bool below = kz[mid] < cz || (kz[mid] == cz && (ky[mid] < cy || (ky[mid] == cy && kx[mid] < cx)));
+      if (below) lo = mid + 1;
+      else hi = mid;
+    }
+    return lo;
+  }
+};
+
+class DeviceIndex {
+public:
+  DeviceIndex(const double* xyz, std::size_t count, int dims, const SearchOptions& options,
+              cudaStream_t stream, MemoryMeter& meter)
+      : n_(static_cast<std::int64_t>(count)), x_(count, meter), y_(count, meter), z_(count, meter),
+        order_(count, meter), start_(0, meter), kx_(0, meter), ky_(0, meter), kz_(0, meter) {
+    grid_ = Grid::from_bounds(reduce_bounds(xyz, count, dims, stream, meter), dims, count, options.horizon,
+                              options.cells_per_horizon);
+    const GridParams g = params_of(grid_);
+    DeviceArray<point_id> ids(count, meter), ids_sorted(count, meter);
+    if (g.dense) {
+      DeviceArray<std::int64_t> keys(count, meter), sorted(count, meter);
+      cell_keys<<<blocks_for(count), block_size, 0, stream>>>(xyz, n_, g, keys.get(), nullptr, nullptr, nullptr, ids.get());
+      check_launch("cell_keys");
+      const auto cells = static_cast<std::int64_t>(grid_.cell_count());
+      int bits = 1;
+      while ((std::int64_t{1} << bits) <= cells) ++bits;
+      sort_pairs(keys.get(), sorted.get(), ids.get(), order_.get(), bits, stream, meter);
+      start_ = DeviceArray<std::int64_t>(static_cast<std::size_t>(cells) + 1, meter);
+      cell_starts<<<blocks_for(static_cast<std::size_t>(cells) + 1), block_size, 0, stream>>>(
+          sorted.get(), n_, cells, start_.get());
+      check_launch("cell_starts");
+    } else {
+      sort_sparse(xyz, g, ids, ids_sorted, stream, meter);
+    }
+    gather_coords<<<blocks_for(count), block_size, 0, stream>>>(xyz, dims, order_.get(), n_, x_.get(), y_.get(), z_.get());
+    check_launch("gather_coords");
+  }
+
+  DeviceIndexView view(std::size_t queries) const {
+    return {params_of(grid_), n_, queries ? static_cast<std::int64_t>(queries) : n_, x_.get(), y_.get(), z_.get(), order_.get(), start_.get(),
+            kx_.get(), ky_.get(), kz_.get()};
+  }
+
+private:
+  static Bounds reduce_bounds(const double* xyz, std::size_t count, int dims, cudaStream_t stream,
+                              MemoryMeter& meter);
+  void sort_pairs(const std::int64_t* keys, std::int64_t* sorted, const point_id* ids,
+                  point_id* ids_sorted, int bits, cudaStream_t stream, MemoryMeter& meter) const;
+  void sort_sparse(const double* xyz, const GridParams& g, DeviceArray<point_id>& ids,
+                   DeviceArray<point_id>& ids_sorted, cudaStream_t stream, MemoryMeter& meter);
+
+  std::int64_t n_;
+  Grid grid_;
+  DeviceArray<double> x_, y_, z_;
+  DeviceArray<point_id> order_;
+  DeviceArray<std::int64_t> start_, kx_, ky_, kz_;
+};
+
+Bounds DeviceIndex::reduce_bounds(const double* xyz, std::size_t count, int dims,
+                                  cudaStream_t stream, MemoryMeter& meter) {
+  // The reduction starts from the first point's box (zeros in unused axes).
+  double first[3] = {0, 0, 0};
+  HORIZON_CUDA_CHECK(cudaMemcpyAsync(first, xyz, dims * sizeof(double), cudaMemcpyDeviceToHost, stream));
+  HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
+  const Box init{{first[0], first[1], first[2]}, {first[0], first[1], first[2]}};
+  const auto boxes = thrust::make_transform_iterator(thrust::counting_iterator<std::int64_t>(0), PointBox{xyz, dims});
+  DeviceArray<Box> result(1, meter);
+  std::size_t temp_bytes = 0;
+  HORIZON_CUDA_CHECK(cub::DeviceReduce::Reduce(nullptr, temp_bytes, boxes, result.get(),
+                                               static_cast<std::int64_t>(count), MergeBoxes(), init, stream));
+  DeviceArray<char> temp(temp_bytes, meter);
+  HORIZON_CUDA_CHECK(cub::DeviceReduce::Reduce(temp.get(), temp_bytes, boxes, result.get(),
+                                               static_cast<std::int64_t>(count), MergeBoxes(), init, stream));
+  Box box;
+  HORIZON_CUDA_CHECK(cudaMemcpyAsync(&box, result.get(), sizeof(Box), cudaMemcpyDeviceToHost, stream));
+  HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
+  Bounds bounds;
+  for (int a = 0; a < 3; ++a) {
+    bounds.lo[a] = box.lo[a];
+    bounds.hi[a] = box.hi[a];
+  }
+  return bounds;
+}
+
+void DeviceIndex::sort_pairs(const std::int64_t* keys, std::int64_t* sorted, const point_id* ids,
+                             point_id* ids_sorted, int bits, cudaStream_t stream,
+                             MemoryMeter& meter) const {
+  std::size_t temp_bytes = 0;
+  HORIZON_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, temp_bytes, keys, sorted, ids, ids_sorted,
+                                                     n_, 0, bits, stream));
+  DeviceArray<char> temp(temp_bytes, meter);
+  HORIZON_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(temp.get(), temp_bytes, keys, sorted, ids, ids_sorted,
+                                                     n_, 0, bits, stream));
+}
+
+// Sparse grids: three stable radix sorts, by x, then y, then z cell coordinate, give the
+// lexicographic (z, y, x) order without ever forming a linear id that could overflow.
+void DeviceIndex::sort_sparse(const double* xyz, const GridParams& g, DeviceArray<point_id>& ids,
+                              DeviceArray<point_id>& ids_sorted, cudaStream_t stream,
+                              MemoryMeter& meter) {
+  const auto count = static_cast<std::size_t>(n_);
+  DeviceArray<std::int64_t> kx(count, meter), ky(count, meter), kz(count, meter);
+  DeviceArray<std::int64_t> gathered(count, meter), sorted(count, meter);
+  cell_keys<<<blocks_for(count), block_size, 0, stream>>>(xyz, n_, g, nullptr, kx.get(), ky.get(), kz.get(), ids.get());
+  check_launch("cell_keys");
+  const std::int64_t* by_axis[3] = {kx.get(), ky.get(), kz.get()};
+  for (int a = 0; a < 3; ++a) {
+    gather<<<blocks_for(count), block_size, 0, stream>>>(by_axis[a], ids.get(), n_, gathered.get());
+    check_launch("gather");
+    int bits = 1;
+    while ((std::int64_t{1} << bits) <= g.cells[a]) ++bits;
+    sort_pairs(gathered.get(), sorted.get(), ids.get(), ids_sorted.get(), bits, stream, meter);
+    std::swap(ids, ids_sorted);
+  }
+  HORIZON_CUDA_CHECK(cudaMemcpyAsync(order_.get(), ids.get(), count * sizeof(point_id), cudaMemcpyDeviceToDevice, stream));
+  kx_ = DeviceArray<std::int64_t>(count, meter);
+  ky_ = DeviceArray<std::int64_t>(count, meter);
+  kz_ = DeviceArray<std::int64_t>(count, meter);
+  DeviceArray<std::int64_t>* sorted_axes[3] = {&kx_, &ky_, &kz_};
+  for (int a = 0; a < 3; ++a) {
+    gather<<<blocks_for(count), block_size, 0, stream>>>(by_axis[a], order_.get(), n_, sorted_axes[a]->get());
+    check_launch("gather");
+  }
+}
+
+}  // namespace
+}  // namespace horizon::detail
