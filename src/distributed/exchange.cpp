@@ -56,32 +56,34 @@ void displace(Layout& l) {
   }
 }
 
+// Counts first, then the points; MPI_Alltoall[v] and MPI_Neighbor_alltoall[v] share signatures.
+using CountExchange = decltype(&MPI_Alltoall);
+using DataExchange = decltype(&MPI_Alltoallv);
+
+std::vector<Packed> exchange(MPI_Comm comm, const std::vector<std::vector<Packed>>& outgoing, int self,
+                             Traffic& traffic, CountExchange counts, DataExchange data) {
+  Layout l = pack(outgoing, self, traffic);
+  l.recv_counts.resize(outgoing.size());
+  counts(l.send_counts.data(), 1, MPI_INT, l.recv_counts.data(), 1, MPI_INT, comm);
+  displace(l);
+  std::vector<Packed> received(static_cast<std::size_t>(std::accumulate(l.recv_counts.begin(), l.recv_counts.end(), 0LL)));
+  data(l.send.data(), l.send_counts.data(), l.send_displs.data(), packed_type(), received.data(), l.recv_counts.data(),
+       l.recv_displs.data(), packed_type(), comm);
+  return received;
+}
+
 }  // namespace
 
 std::vector<Packed> exchange_all(MPI_Comm comm, const std::vector<std::vector<Packed>>& outgoing,
                                  Traffic& traffic) {
   int self = 0;
   MPI_Comm_rank(comm, &self);
-  Layout l = pack(outgoing, self, traffic);
-  l.recv_counts.resize(outgoing.size());
-  MPI_Alltoall(l.send_counts.data(), 1, MPI_INT, l.recv_counts.data(), 1, MPI_INT, comm);
-  displace(l);
-  std::vector<Packed> received(static_cast<std::size_t>(std::accumulate(l.recv_counts.begin(), l.recv_counts.end(), 0LL)));
-  MPI_Alltoallv(l.send.data(), l.send_counts.data(), l.send_displs.data(), packed_type(), received.data(),
-                l.recv_counts.data(), l.recv_displs.data(), packed_type(), comm);
-  return received;
+  return exchange(comm, outgoing, self, traffic, &MPI_Alltoall, &MPI_Alltoallv);
 }
 
 std::vector<Packed> exchange_with(MPI_Comm graph, const std::vector<std::vector<Packed>>& outgoing,
                                   Traffic& traffic) {
-  Layout l = pack(outgoing, -1, traffic);
-  l.recv_counts.resize(outgoing.size());
-  MPI_Neighbor_alltoall(l.send_counts.data(), 1, MPI_INT, l.recv_counts.data(), 1, MPI_INT, graph);
-  displace(l);
-  std::vector<Packed> received(static_cast<std::size_t>(std::accumulate(l.recv_counts.begin(), l.recv_counts.end(), 0LL)));
-  MPI_Neighbor_alltoallv(l.send.data(), l.send_counts.data(), l.send_displs.data(), packed_type(), received.data(),
-                         l.recv_counts.data(), l.recv_displs.data(), packed_type(), graph);
-  return received;
+  return exchange(graph, outgoing, -1, traffic, &MPI_Neighbor_alltoall, &MPI_Neighbor_alltoallv);
 }
 
 }  // namespace horizon::detail
