@@ -1,10 +1,16 @@
-// horizon_bench: neighbour-list throughput on the benchmark problems of DESIGN.md, with
-// nanoflann (a k-d tree, one core) as the anchor measured in the same run. Prints CSV.
+// horizon_bench: neighbour-list throughput on the benchmark problems of DESIGN.md against two
+// anchors measured in the same process on the same points: a textbook cell list (the same method,
+// bench/textbook_cell_list.cpp) on one core and on all cores, and nanoflann's k-d tree (one core).
+// Prints CSV with the ratio to the textbook list at the same thread count, and per problem the
+// floors: writing the list once at memset speed, and the candidates tested per point.
 #include <CLI/CLI.hpp>
 #include <nanoflann.hpp>
 #include <omp.h>
 
 #include <algorithm>
+#include <cstring>
+#include <numeric>
+#include <random>
 #include <cstdio>
 #include <functional>
 #include <string>
@@ -14,6 +20,7 @@
 #include "horizon/generate.hpp"
 #include "horizon/search.hpp"
 #include "horizon/stopwatch.hpp"
+#include "textbook_cell_list.hpp"
 
 namespace {
 
@@ -70,16 +77,43 @@ Timing nanoflann_list(const PointSet& points, double horizon) {
   return t;
 }
 
-Timing horizon_list(const PointSet& points, double horizon, Backend backend, int k, int threads) {
+Timing horizon_list(const PointSet& points, double horizon, Backend backend, int k, int threads,
+                    bool sorted) {
   SearchOptions options;
   options.horizon = horizon;
   options.backend = backend;
   options.cells_per_horizon = k;
   options.threads = threads;
+  options.sort_rows = sorted;
   SearchStats stats;
   Stopwatch clock;
   const NeighborList list = search(points.view(), options, &stats);
   return {stats.grid_seconds, stats.search_seconds, clock.lap(), list.total()};
+}
+
+Timing textbook(const PointSet& points, double horizon, int threads, double* candidates) {
+  Stopwatch clock;
+  const bench::TextbookList list = bench::textbook_cell_list(points, horizon, threads);
+  *candidates = list.candidates_per_point;
+  return {list.grid_seconds, list.search_seconds, clock.lap(), list.offsets.back()};
+}
+
+// The floor of any list builder: writing the list (offsets and indices) once into fresh memory.
+Timing memset_floor(const PointSet& points, std::int64_t entries, int threads) {
+  Stopwatch clock;
+  Buffer<point_id> indices(static_cast<std::size_t>(entries));
+  Buffer<std::int64_t> offsets(points.size() + 1);
+  auto* bytes = reinterpret_cast<char*>(indices.data());
+  const std::size_t size = indices.size() * sizeof(point_id), piece = std::size_t{1} << 20;
+  const auto pieces = static_cast<std::int64_t>((size + piece - 1) / piece);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t i = 0; i < pieces; ++i) {
+    const std::size_t at = static_cast<std::size_t>(i) * piece;
+    std::memset(bytes + at, 1, std::min(piece, size - at));
+  }
+  std::memset(offsets.data(), 1, offsets.size() * sizeof(std::int64_t));
+  const double seconds = clock.lap();
+  return {0, seconds, seconds, entries};
 }
 
 // Median of `reps` runs by total time.
@@ -90,17 +124,28 @@ Timing median(int reps, const std::function<Timing()>& once) {
   return runs[runs.size() / 2];
 }
 
+// The same points in a random order: grid methods must not depend on input locality.
+PointSet shuffled(const PointSet& points, std::uint64_t seed) {
+  std::vector<std::size_t> order(points.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(order.begin(), order.end(), std::mt19937_64(seed));
+  PointSet out = points;
+  for (std::size_t i = 0; i < order.size(); ++i)
+    for (int a = 0; a < 3; ++a) out.xyz[3 * i + a] = points.xyz[3 * order[i] + a];
+  return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"horizon_bench: neighbour-list throughput against nanoflann, as CSV"};
+  CLI::App app{"horizon_bench: neighbour-list throughput against a textbook cell list and nanoflann, as CSV"};
   std::vector<int> sizes{37, 47, 53, 59, 63, 80, 100};
   std::vector<double> spacings{1.5, 3.015};
   std::vector<std::string> backends{"serial", "openmp"};
-  std::vector<int> ks{1, 2, 3};
+  std::vector<int> ks{1};
   int reps = 3, threads = 0;
   std::size_t cloud_points = 1000000;
-  bool anchor = true;
+  bool nanoflann = false, shuffle = true;
   app.add_option("--sizes", sizes, "lattice points per side")->delimiter(',');
   app.add_option("--m", spacings, "horizons in lattice spacings")->delimiter(',');
   app.add_option("--backends", backends, "backends to time")->delimiter(',');
@@ -108,13 +153,18 @@ int main(int argc, char** argv) {
   app.add_option("--reps", reps, "repetitions (the median is reported)");
   app.add_option("--threads", threads, "openmp threads (0: all)");
   app.add_option("--cloud-points", cloud_points, "points in the random and clustered clouds (0: none)");
-  app.add_flag("!--no-anchor", anchor, "skip nanoflann");
+  app.add_flag("--nanoflann,!--no-nanoflann", nanoflann, "also time nanoflann (one core; slow)");
+  app.add_flag("--shuffled,!--no-shuffled", shuffle, "also time the largest lattice in random order");
   CLI11_PARSE(app, argc, argv);
   if (threads == 0) threads = omp_get_max_threads();
 
   std::vector<Problem> problems;
   for (int n : sizes)
     for (double m : spacings) problems.push_back({"lattice", n, m, lattice(n), m * 10.0 / n});
+  if (shuffle && !sizes.empty()) {
+    const int n = *std::max_element(sizes.begin(), sizes.end());
+    for (double m : spacings) problems.push_back({"lattice-shuffled", n, m, shuffled(lattice(n), 7), m * 10.0 / n});
+  }
   if (cloud_points > 0)
     for (double m : spacings) {
       // Same density as the 10^6-point lattice: spacing h = 10 / cbrt(N).
@@ -123,30 +173,41 @@ int main(int argc, char** argv) {
       problems.push_back({"clustered", 0, m, clustered_cloud(cloud_points, 64, 1.0, 3, 2), m * h});
     }
 
-  std::printf("# machine: %u hardware threads; horizon openmp threads %d; reps %d (median)\n",
-              std::thread::hardware_concurrency(), threads, reps);
-  std::printf("problem,n,points,m,horizon,backend,k,threads,grid_s,search_s,total_s,points_per_s,neighbors,speedup_vs_nanoflann\n");
+  std::printf("# machine: %u hardware threads; openmp threads %d; reps %d (median); %s\n",
+              std::thread::hardware_concurrency(), threads, reps, cpu_simd_target());
+  std::printf("problem,n,points,m,horizon,impl,rows,k,threads,grid_s,search_s,total_s,points_per_s,neighbors,"
+              "candidates_per_point,vs_textbook\n");
   for (const Problem& p : problems) {
     const double n_points = static_cast<double>(p.points.size());
-    double anchor_total = 0;
-    auto row = [&](const std::string& backend, int k, int used_threads, const Timing& t) {
-      std::printf("%s,%d,%zu,%g,%.6g,%s,%d,%d,%.4f,%.4f,%.4f,%.4g,%lld,%.2f\n", p.name.c_str(), p.n,
-                  p.points.size(), p.m, p.horizon, backend.c_str(), k, used_threads, t.grid, t.search,
-                  t.total, n_points / t.total, static_cast<long long>(t.neighbors),
-                  anchor_total > 0 ? anchor_total / t.total : 0.0);
+    double candidates = 0, textbook_serial = 0, textbook_parallel = 0;
+    auto row = [&](const std::string& impl, const char* rows, int k, int used, const Timing& t) {
+      const double anchor = used == 1 ? textbook_serial : textbook_parallel;
+      std::printf("%s,%d,%zu,%g,%.6g,%s,%s,%d,%d,%.4f,%.4f,%.4f,%.4g,%lld,%.0f,%.2f\n", p.name.c_str(), p.n,
+                  p.points.size(), p.m, p.horizon, impl.c_str(), rows, k, used, t.grid, t.search, t.total,
+                  n_points / t.total, static_cast<long long>(t.neighbors), candidates,
+                  anchor > 0 ? anchor / t.total : 0.0);
       std::fflush(stdout);
     };
-    if (anchor) {
-      const Timing t = median(reps, [&] { return nanoflann_list(p.points, p.horizon); });
-      anchor_total = t.total;
-      row("nanoflann", 0, 1, t);
-    }
+    const Timing one = median(reps, [&] { return textbook(p.points, p.horizon, 1, &candidates); });
+    row("textbook", "unsorted", 1, 1, one);
+    textbook_serial = one.total;
+    const Timing all = median(reps, [&] { return textbook(p.points, p.horizon, threads, &candidates); });
+    row("textbook", "unsorted", 1, threads, all);
+    textbook_parallel = all.total;
+    row("floor_memset", "-", 0, 1, median(reps, [&] { return memset_floor(p.points, one.neighbors, 1); }));
+    row("floor_memset", "-", 0, threads, median(reps, [&] { return memset_floor(p.points, one.neighbors, threads); }));
+    if (nanoflann) row("nanoflann", "sorted", 0, 1, median(reps, [&] { return nanoflann_list(p.points, p.horizon); }));
     for (const std::string& name : backends)
-      for (int k : ks) {
-        const Backend backend = parse_backend(name);
-        const int used = backend == Backend::openmp ? threads : 1;
-        row(name, k, used, median(reps, [&] { return horizon_list(p.points, p.horizon, backend, k, used); }));
-      }
+      for (int k : ks)
+        for (bool sorted : {true, false}) {
+          const Backend backend = parse_backend(name);
+          const int used = backend == Backend::openmp ? threads : 1;
+          const Timing t = median(reps, [&] { return horizon_list(p.points, p.horizon, backend, k, used, sorted); });
+          if (t.neighbors != one.neighbors)
+            std::fprintf(stderr, "MISMATCH: %s lists %lld entries, the textbook %lld\n", name.c_str(),
+                         static_cast<long long>(t.neighbors), static_cast<long long>(one.neighbors));
+          row(name, sorted ? "sorted" : "unsorted", k, used, t);
+        }
   }
   return 0;
 }

@@ -28,6 +28,8 @@ inline std::vector<Dataset> datasets(int dims) {
   std::vector<Dataset> all;
   all.push_back({"random", random_cloud(1200, dims, 7), dims == 3 ? 1.6 : 0.5});
   all.push_back({"clustered", clustered_cloud(1200, 6, 0.4, dims, 3), 0.25});
+  // Dense: hundreds of candidates per cell, where rows come from a stencil sorted per cell.
+  all.push_back({"dense", random_cloud(1500, dims, 13), dims == 3 ? 3.0 : 2.5});
   const int n = dims == 3 ? 9 : 30;
   all.push_back({"lattice_m1.5", lattice(n, dims), 1.5 * 10.0 / n});
   all.push_back({"lattice_m3.015", lattice(n, dims), 3.015 * 10.0 / n});

@@ -15,7 +15,7 @@ namespace horizon {
 struct Bounds {
   std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0};
 };
-Bounds bounds_of(PointView points);
+Bounds bounds_of(PointView points, int threads = 1);
 
 struct Grid {
   int dims = 3;
@@ -29,8 +29,9 @@ struct Grid {
   /// The grid for `points` with cells of side horizon/k. The side is enlarged by the rounding
   /// error of computing cell coordinates (2^-49 of the extent, nothing at ordinary extents), so
   /// two points closer than the horizon are never more than k cells apart along any axis.
-  static Grid fit(PointView points, double horizon, int cells_per_horizon) {
-    return from_bounds(bounds_of(points), points.dims(), points.size(), horizon, cells_per_horizon);
+  static Grid fit(PointView points, double horizon, int cells_per_horizon, int threads = 1) {
+    return from_bounds(bounds_of(points, threads), points.dims(), points.size(), horizon,
+                       cells_per_horizon);
   }
   /// The same grid from the bounding box of `count` points (the GPU reduces the box itself).
   static Grid from_bounds(const Bounds& box, int dims, std::size_t count, double horizon,

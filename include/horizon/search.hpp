@@ -21,6 +21,8 @@ Backend parse_backend(const std::string& name);
 const char* backend_name(Backend backend);
 /// Whether `backend` is compiled in and has hardware to run on.
 bool backend_available(Backend backend);
+/// The SIMD instruction set the CPU backends chose for this CPU at run time ("AVX3", "AVX2", ...).
+const char* cpu_simd_target();
 
 struct SearchOptions {
   double horizon = 0;                 ///< pairs closer than this (strictly) are neighbours

@@ -1,6 +1,10 @@
 #include "horizon/cell_index.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <limits>
+
+#include "parallel_scan.hpp"
 
 namespace horizon {
 
@@ -14,55 +18,90 @@ std::array<std::int64_t, 3> cell_of_point(PointView points, const Grid& grid, st
 
 }  // namespace
 
-CellIndex::CellIndex(PointView points, const Grid& grid) : grid_(grid) {
-  const std::size_t n = points.size();
-  order_.resize(n);
-  if (grid_.dense) {
-    // Counting sort by linear cell id (thesis §4.2.3): count, exclusive scan, place. Stable,
-    // so a cell's points keep their input order.
-    const auto cells = static_cast<std::size_t>(grid_.cell_count());
-    start_by_id_.assign(cells + 1, 0);
-    std::vector<std::int64_t> id(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const auto c = cell_of_point(points, grid_, i);
-      id[i] = grid_.linear_id(c[0], c[1], c[2]);
-      ++start_by_id_[static_cast<std::size_t>(id[i]) + 1];
-    }
-    for (std::size_t c = 0; c < cells; ++c) start_by_id_[c + 1] += start_by_id_[c];
-    std::vector<std::int64_t> next(start_by_id_.begin(), start_by_id_.end() - 1);
-    for (std::size_t i = 0; i < n; ++i)
-      order_[static_cast<std::size_t>(next[static_cast<std::size_t>(id[i])]++)] =
-          static_cast<point_id>(i);
-    // Occupied cells: the non-empty entries of the table, x fastest, as in the sort.
-    for (std::size_t c = 0; c < cells; ++c) {
-      if (start_by_id_[c + 1] == start_by_id_[c]) continue;
-      const auto linear = static_cast<std::int64_t>(c);
-      cell_coord_.push_back({linear / (grid_.cells[0] * grid_.cells[1]),
-                             linear / grid_.cells[0] % grid_.cells[1], linear % grid_.cells[0]});
-      cell_begin_.push_back(start_by_id_[c]);
-    }
-  } else {
-    // Sparse: sort (cz, cy, cx, id) tuples; memory stays O(N) whatever the extent.
-    std::vector<std::array<std::int64_t, 4>> keys(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const auto c = cell_of_point(points, grid_, i);
-      keys[i] = {c[2], c[1], c[0], static_cast<std::int64_t>(i)};
-    }
-    std::sort(keys.begin(), keys.end());
-    for (std::size_t p = 0; p < n; ++p) {
-      order_[p] = static_cast<point_id>(keys[p][3]);
-      const std::array<std::int64_t, 3> cell{keys[p][0], keys[p][1], keys[p][2]};
-      if (p == 0 || cell != cell_coord_.back()) {
-        cell_coord_.push_back(cell);
-        cell_begin_.push_back(static_cast<std::int64_t>(p));
-      }
+CellIndex::CellIndex(PointView points, const Grid& grid, int threads)
+    : grid_(grid), count_(points.size()) {
+  order_.resize(count_ + padding, -1);
+  if (grid_.dense)
+    sort_dense(points, threads);
+  else
+    sort_sparse(points);
+  cell_begin_.push_back(static_cast<std::int64_t>(count_));
+
+  const auto n = static_cast<std::int64_t>(count_);
+  for (int a = 0; a < 3; ++a) sorted_[a].resize(count_ + padding, std::numeric_limits<double>::quiet_NaN());
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+  for (std::int64_t p = 0; p < n; ++p)
+    for (int a = 0; a < 3; ++a)
+      sorted_[a][static_cast<std::size_t>(p)] = a < grid_.dims ? points(static_cast<std::size_t>(order_[p]), a) : 0.0;
+}
+
+// Counting sort by linear cell id (thesis §4.2.3): count, exclusive scan, place. On several
+// threads the counts and places are atomic, so a cell's points arrive in any order and are then
+// sorted by id: every thread count gives the serial (stable) order.
+void CellIndex::sort_dense(PointView points, int threads) {
+  const auto n = static_cast<std::int64_t>(count_);
+  const auto cells = static_cast<std::int64_t>(grid_.cell_count());
+  start_by_id_.assign(static_cast<std::size_t>(cells) + 1, 0);
+  std::vector<std::int64_t> id(count_);
+  std::int64_t* start = start_by_id_.data();
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto c = cell_of_point(points, grid_, static_cast<std::size_t>(i));
+    id[i] = grid_.linear_id(c[0], c[1], c[2]);
+    std::atomic_ref<std::int64_t>(start[id[i] + 1]).fetch_add(1, std::memory_order_relaxed);
+  }
+  detail::inclusive_scan(start_by_id_.data(), start_by_id_.size(), threads);
+
+  std::vector<std::int64_t> next(start_by_id_.begin(), start_by_id_.end() - 1);
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const std::int64_t at = std::atomic_ref<std::int64_t>(next[id[i]]).fetch_add(1, std::memory_order_relaxed);
+    order_[at] = static_cast<point_id>(i);
+  }
+
+  // Occupied cells: the non-empty entries of the table, x fastest, as in the sort; counted per
+  // block of the table, then written in block order.
+  const std::int64_t blocks = std::max(1, threads) * 4;
+  std::vector<std::int64_t> occupied(static_cast<std::size_t>(blocks) + 1, 0);
+  auto block_cells = [&](std::int64_t b) { return std::pair{cells * b / blocks, cells * (b + 1) / blocks}; };
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+  for (std::int64_t b = 0; b < blocks; ++b) {
+    const auto [first, last] = block_cells(b);
+    for (std::int64_t c = first; c < last; ++c) occupied[b + 1] += start[c + 1] > start[c];
+  }
+  detail::inclusive_scan(occupied.data(), occupied.size(), 1);
+  cell_begin_.resize(static_cast<std::size_t>(occupied.back()));
+  cell_coord_.resize(cell_begin_.size());
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+  for (std::int64_t b = 0; b < blocks; ++b) {
+    const auto [first, last] = block_cells(b);
+    std::int64_t out = occupied[b];
+    for (std::int64_t c = first; c < last; ++c) {
+      if (start[c + 1] == start[c]) continue;
+      cell_coord_[out] = {c / (grid_.cells[0] * grid_.cells[1]), c / grid_.cells[0] % grid_.cells[1],
+                          c % grid_.cells[0]};
+      cell_begin_[out++] = start[c];
+      if (threads > 1) std::sort(order_.begin() + start[c], order_.begin() + start[c + 1]);
     }
   }
-  cell_begin_.push_back(static_cast<std::int64_t>(n));
+}
 
-  for (int a = 0; a < 3; ++a) sorted_[a].resize(n, 0.0);
-  for (std::size_t p = 0; p < n; ++p)
-    for (int a = 0; a < grid_.dims; ++a) sorted_[a][p] = points(order_[p], a);
+// Sparse: sort (cz, cy, cx, id) tuples; memory stays O(N) whatever the extent.
+void CellIndex::sort_sparse(PointView points) {
+  std::vector<std::array<std::int64_t, 4>> keys(count_);
+  for (std::size_t i = 0; i < count_; ++i) {
+    const auto c = cell_of_point(points, grid_, i);
+    keys[i] = {c[2], c[1], c[0], static_cast<std::int64_t>(i)};
+  }
+  std::sort(keys.begin(), keys.end());
+  for (std::size_t p = 0; p < count_; ++p) {
+    order_[p] = static_cast<point_id>(keys[p][3]);
+    const std::array<std::int64_t, 3> cell{keys[p][0], keys[p][1], keys[p][2]};
+    if (p == 0 || cell != cell_coord_.back()) {
+      cell_coord_.push_back(cell);
+      cell_begin_.push_back(static_cast<std::int64_t>(p));
+    }
+  }
 }
 
 int CellIndex::max_stencil_rows() const {

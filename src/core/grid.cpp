@@ -16,15 +16,23 @@ void validate_horizon(double horizon, int cells_per_horizon) {
     throw Error("cells per horizon must be 1, 2 or 3, got " + std::to_string(cells_per_horizon));
 }
 
-Bounds bounds_of(PointView points) {
+Bounds bounds_of(PointView points, int threads) {
   Bounds box;
   if (points.empty()) return box;
-  for (int a = 0; a < points.dims(); ++a) box.lo[a] = box.hi[a] = points(0, a);
-  for (std::size_t i = 1; i < points.size(); ++i)
-    for (int a = 0; a < points.dims(); ++a) {
-      box.lo[a] = std::min(box.lo[a], points(i, a));
-      box.hi[a] = std::max(box.hi[a], points(i, a));
-    }
+  const auto n = static_cast<std::int64_t>(points.size());
+  const bool flat = points.dims() == 2;
+  double lx = points(0, 0), ly = points(0, 1), lz = flat ? 0 : points(0, 2);
+  double hx = lx, hy = ly, hz = lz;
+#pragma omp parallel for num_threads(threads) if (threads > 1) \
+    reduction(min : lx, ly, lz) reduction(max : hx, hy, hz)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto at = static_cast<std::size_t>(i);
+    const double x = points(at, 0), y = points(at, 1), z = flat ? 0 : points(at, 2);
+    lx = std::min(lx, x), ly = std::min(ly, y), lz = std::min(lz, z);
+    hx = std::max(hx, x), hy = std::max(hy, y), hz = std::max(hz, z);
+  }
+  box.lo = {lx, ly, lz};
+  box.hi = {hx, hy, hz};
   return box;
 }
 

@@ -1,6 +1,7 @@
 #include "horizon/search.hpp"
 
 #include "../backends/backends.hpp"
+#include "family_search.hpp"
 #include "horizon/error.hpp"
 #include "horizon/grid.hpp"
 
@@ -33,6 +34,8 @@ bool backend_available(Backend backend) {
   }
   return false;
 }
+
+const char* cpu_simd_target() { return detail::simd_target(); }
 
 NeighborList search(PointView points, const SearchOptions& options, SearchStats* stats) {
   validate(points);

@@ -1,0 +1,64 @@
+// The CPU passes are compiled for several instruction sets and dispatched at run time: every one
+// this machine can run (AVX-512, AVX2, SSE4, ... down to the emulated fallback) must give the
+// oracle's list, for every metric, dimension, cell size, list kind and row order.
+#include <gtest/gtest.h>
+#include <hwy/targets.h>
+
+#include <algorithm>
+#include <string>
+
+#include "datasets.hpp"
+#include "horizon/oracle.hpp"
+#include "horizon/search.hpp"
+
+namespace horizon::testing {
+namespace {
+
+TEST(SimdTargets, EveryTargetThisCpuRunsMatchesBruteForce) {
+  const std::int64_t supported = hwy::SupportedTargets();
+  int targets_run = 0;
+  for (const std::int64_t target : {HWY_AVX3_DL, HWY_AVX3, HWY_AVX2, HWY_SSE4, HWY_SSSE3, HWY_EMU128}) {
+    if (!(supported & target)) continue;
+    hwy::SetSupportedTargetsForTest(target);
+    if (std::string(cpu_simd_target()) != hwy::TargetName(target)) continue;  // not compiled in
+    ++targets_run;
+    for (int dims : {2, 3})
+      for (const Dataset& data : datasets(dims))
+        for (Metric metric : {Metric::euclidean, Metric::manhattan, Metric::chebyshev})
+          for (int k : {1, 2})
+            for (bool half : {false, true})
+              for (bool sorted : {true, false}) {
+                SearchOptions options;
+                options.horizon = data.horizon;
+                options.metric = metric;
+                options.cells_per_horizon = k;
+                options.half = half;
+                options.sort_rows = sorted;
+                options.backend = Backend::serial;
+                NeighborList list = search(data.points.view(), options);
+                const NeighborList expected = brute_force(data.points.view(), options);
+                const std::string where = std::string(hwy::TargetName(target)) + " " + data.name + " " +
+                                          metric_name(metric) + " k" + std::to_string(k) + (half ? " half" : "") +
+                                          (sorted ? "" : " unsorted");
+                ASSERT_EQ(list.offsets(), expected.offsets()) << where;
+                if (sorted) {
+                  EXPECT_EQ(list.indices(), expected.indices()) << where;
+                } else {
+                  for (std::size_t i = 0; i < list.size(); ++i) {
+                    std::vector<point_id> row(list.row(i).begin(), list.row(i).end());
+                    std::sort(row.begin(), row.end());
+                    ASSERT_TRUE(std::equal(row.begin(), row.end(), expected.row(i).begin())) << where << " row " << i;
+                  }
+                }
+              }
+  }
+  hwy::SetSupportedTargetsForTest(0);
+#if defined(HORIZON_NATIVE_BUILD)
+  EXPECT_GE(targets_run, 1);  // -march=native compiles only this CPU's best target
+#else
+  EXPECT_GE(targets_run, 2) << "a portable build dispatches to this CPU's best target and fallbacks";
+#endif
+}
+
+}  // namespace
+}  // namespace horizon::testing
