@@ -1,4 +1,4 @@
-// The distance tests of find_families(), written once with highway and compiled for each
+// The distance tests of count_families() and fill_families(), written once with highway and compiled for each
 // instruction set (SSE4, AVX2, AVX-512, ...); the best one this CPU has is picked at run time,
 // so a portable build runs at native speed everywhere. Neighbours are written with a register
 // compress and a plain store: AVX-512's compress-store to memory is microcoded on AMD Zen 4/5.
@@ -35,13 +35,14 @@ HWY_INLINE V accumulate(V dx, V dy, V dz) {
 }
 
 /// Tests point (px, py, pz) with id `self` against candidates [begin, end) of arrays x, y, z,
-/// ids: a neighbour when within the horizon and not `self` (Half: id above `self`). Fill appends
-/// the neighbours' ids to `out` in array order and returns the new end; counting returns `out`
-/// advanced by their number. Loads may run up to a vector past `end` (the arrays are padded).
+/// ids: a neighbour when within the horizon and not `self` (Half: id above `self`). Returns
+/// their number; Fill also writes their ids to `out` in array order (and up to a vector of junk
+/// after them). Loads may run up to a vector past `end` (the arrays are padded).
 template <Metric M, int D, bool Half, bool Fill, class V, class VI>
-HWY_INLINE point_id* TestCandidates(V px, V py, V pz, VI self, V threshold, const double* x,
-                                    const double* y, const double* z, const point_id* ids,
-                                    std::int64_t begin, std::int64_t end, point_id* out) {
+HWY_INLINE std::int64_t TestCandidates(V px, V py, V pz, VI self, V threshold, const double* x,
+                                       const double* y, const double* z, const point_id* ids,
+                                       std::int64_t begin, std::int64_t end, point_id* out) {
+  std::int64_t found = 0;
   const hn::DFromV<V> d;
   const hn::DFromV<VI> di;
   const auto lanes = static_cast<std::int64_t>(hn::Lanes(d));
@@ -56,10 +57,10 @@ HWY_INLINE point_id* TestCandidates(V px, V py, V pz, VI self, V threshold, cons
     hn::StoreMaskBits(d, near, bits);
     const VI candidate = hn::LoadU(di, ids + q);
     const auto keep = hn::And(hn::LoadMaskBits(di, bits), Half ? hn::Gt(candidate, self) : hn::Ne(candidate, self));
-    if constexpr (Fill) hn::StoreU(hn::Compress(candidate, keep), di, out);
-    out += hn::CountTrue(di, keep);
+    if constexpr (Fill) hn::StoreU(hn::Compress(candidate, keep), di, out + found);
+    found += static_cast<std::int64_t>(hn::CountTrue(di, keep));
   }
-  return out;
+  return found;
 }
 
 template <Metric M, int D, bool Half, bool Fill>
@@ -102,21 +103,22 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       if (static_cast<std::size_t>(self) >= queries) continue;  // no family: size stays 0
       const auto px = hn::Set(d, x[p]), py = hn::Set(d, y[p]), pz = hn::Set(d, z[p]);
       const auto id = hn::Set(di, self);
-      point_id* const row = row_buffer.data();
-      point_id* out = row;
+      point_id* const row = row_buffer.data();  // empty when counting
+      std::int64_t found = 0;
       if (sorted_stencil) {
-        out = TestCandidates<M, D, Half, Fill>(px, py, pz, id, threshold, sorted.coords(0), sorted.coords(1),
-                                               sorted.coords(2), sorted.ids(), 0, sorted.size(), out);
+        found = TestCandidates<M, D, Half, Fill>(px, py, pz, id, threshold, sorted.coords(0), sorted.coords(1),
+                                                 sorted.coords(2), sorted.ids(), 0, sorted.size(), row);
       } else {
         for (int r = 0; r < row_count; ++r)
-          out = TestCandidates<M, D, Half, Fill>(px, py, pz, id, threshold, x, y, z, order, rows[r].begin,
-                                                 rows[r].end, out);
+          found += TestCandidates<M, D, Half, Fill>(px, py, pz, id, threshold, x, y, z, order, rows[r].begin,
+                                                    rows[r].end, Fill ? row + found : nullptr);
       }
-      if (Fill && options.sort_rows && !sorted_stencil) insertion_sort(row, out);
-      if constexpr (Fill)
-        std::memcpy(pass.indices + offsets[self], row, static_cast<std::size_t>(out - row) * sizeof(point_id));
-      else
-        offsets[self + 1] = out - row;
+      if constexpr (Fill) {
+        if (options.sort_rows && !sorted_stencil) insertion_sort(row, row + found);
+        std::memcpy(pass.indices + offsets[self], row, static_cast<std::size_t>(found) * sizeof(point_id));
+      } else {
+        offsets[self + 1] = found;
+      }
     }
   }
 }
