@@ -30,12 +30,7 @@ void SortedStencil::gather(const CellIndex& index, const CellIndex::Range* rows,
   merged_.resize(keys_.size());
   for (const std::uint64_t key : keys_)
     merged_[bucket_start_[(static_cast<std::uint32_t>(key >> 32) - low) >> shift]++] = key;
-  for (std::size_t i = 1; i < merged_.size(); ++i) {
-    const std::uint64_t key = merged_[i];
-    std::size_t j = i;
-    for (; j > 0 && merged_[j - 1] > key; --j) merged_[j] = merged_[j - 1];
-    merged_[j] = key;
-  }
+  insertion_sort(merged_.data(), merged_.data() + merged_.size());
   keys_.swap(merged_);
 
   const auto padded = keys_.size() + CellIndex::padding;

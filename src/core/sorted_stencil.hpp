@@ -9,11 +9,12 @@
 
 namespace horizon::detail {
 
-/// Sorts [first, last) ascending by insertion: fastest for a few ids, or ids nearly in order.
-inline void insertion_sort(point_id* first, point_id* last) {
-  for (point_id* i = first + 1; i < last; ++i) {
-    const point_id value = *i;
-    point_id* j = i;
+/// Sorts [first, last) ascending by insertion: fastest for a few keys, or keys nearly in order.
+template <class T>
+void insertion_sort(T* first, T* last) {
+  for (T* i = first + 1; i < last; ++i) {
+    const T value = *i;
+    T* j = i;
     for (; j > first && j[-1] > value; --j) *j = j[-1];
     *j = value;
   }
