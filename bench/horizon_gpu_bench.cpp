@@ -1,14 +1,17 @@
 // horizon_gpu_bench: the thesis's GPU problems (Table 5.1) on one GPU. For each problem: the
-// device-resident time (points on the GPU -> CSR on the GPU), the host->host time, the same
-// list from openmp on all CPU cores (the thesis's relative throughput, Fig. 5.1), and the
-// floors measured in the same run: PCIe copies of points in and list out, and the device
-// write of the list. Prints CSV.
+// device-resident time (points on the GPU -> CSR on the GPU: the first call, the median of the
+// repeats, and a repeat on the points moved slightly, as a solver's next step), the naive GPU
+// cell list on the same points in the same process (bench/naive_gpu_cell_list.cu), the
+// host->host time, the same list from openmp on all CPU cores (the thesis's relative
+// throughput, Fig. 5.1), and the floors measured in the same run: PCIe copies of points in and
+// list out, and the device write of the list. Prints CSV.
 #include <CLI/CLI.hpp>
 #include <cuda_runtime.h>
 #include <omp.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <cstdio>
 #include <functional>
@@ -19,6 +22,7 @@
 #include "horizon/generate.hpp"
 #include "horizon/search.hpp"
 #include "horizon/stopwatch.hpp"
+#include "naive_gpu_cell_list.hpp"
 
 namespace {
 
@@ -85,10 +89,13 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   const Bandwidth bw = measure_bandwidth();
-  std::printf("# gpu: %s; cpu threads: %d; pinned h2d %.1f GB/s, d2h %.1f GB/s, device write %.0f GB/s\n",
+  const char* kernels = std::getenv("HORIZON_CUDA_KERNELS");
+  std::printf("# gpu: %s; cpu threads: %d; pinned h2d %.1f GB/s, d2h %.1f GB/s, device write %.0f GB/s; "
+              "build kernels: %s\n",
               cuda_device_name(0).c_str(), omp_get_max_threads(), bw.host_to_device / 1e9,
-              bw.device_to_host / 1e9, bw.device_write / 1e9);
-  std::printf("problem,n,points,m,neighbors,device_s,device_points_per_s,device_floor_s,device_vs_floor,"
+              bw.device_to_host / 1e9, bw.device_write / 1e9, kernels ? kernels : "cell");
+  std::printf("problem,n,points,m,neighbors,device_s,device_points_per_s,device_first_s,device_moved_s,"
+              "naive_s,naive_points_per_s,device_vs_naive,device_floor_s,device_vs_floor,"
               "host_s,host_points_per_s,h2d_s,kernels_s,d2h_s,copy_floor_s,host_vs_copy_floor,"
               "openmp_s,openmp_points_per_s,gpu_vs_openmp,peak_gpu_gib\n");
 
@@ -118,29 +125,47 @@ int main(int argc, char** argv) {
     options.cells_per_horizon = k;
     options.sort_rows = !unsorted;
 
-    // Device-resident: points already on the GPU, list left on the GPU.
+    // Device-resident: points already on the GPU, list left on the GPU. The first call, then
+    // the repeats (median), then the points moved by up to 1 % of the horizon.
+    const std::size_t values = p.points.xyz.size();
     double* device_xyz = nullptr;
-    check(cudaMalloc(&device_xyz, p.points.xyz.size() * sizeof(double)), "cudaMalloc points");
-    check(cudaMemcpy(device_xyz, p.points.xyz.data(), p.points.xyz.size() * sizeof(double), cudaMemcpyHostToDevice), "copy points");
+    check(cudaMalloc(&device_xyz, values * sizeof(double)), "cudaMalloc points");
+    check(cudaMemcpy(device_xyz, p.points.xyz.data(), values * sizeof(double), cudaMemcpyHostToDevice), "copy points");
     std::vector<double> device_times;
+    double device_first = 0, device_moved = 0;
     std::int64_t neighbors = 0;
     std::size_t peak = 0;
     bool device_fits = true;
-    for (int r = 0; r < reps + 1 && device_fits; ++r) {
-      try {
-        SearchStats stats;
-        Stopwatch clock;
-        const DeviceNeighborList list = search_device(device_xyz, p.points.size(), 3, options, nullptr, &stats);
-        check(cudaDeviceSynchronize(), "sync");
-        if (r > 0) device_times.push_back(clock.lap());  // the first run warms up
-        if (r == reps) std::fprintf(stderr, "n=%d m=%g k=%d: device index %.4f s, build %.4f s\n", p.n, p.m, k,
-                                    stats.grid_seconds, stats.search_seconds);
-        neighbors = list.total();
-        peak = stats.peak_gpu_bytes;
-      } catch (const DeviceOutOfMemory& e) {
-        device_fits = false;
-        std::fprintf(stderr, "device-resident n=%d m=%g: %s\n", p.n, p.m, e.what());
-      }
+    auto device_search = [&] {
+      SearchStats stats;
+      Stopwatch clock;
+      const DeviceNeighborList list = search_device(device_xyz, p.points.size(), 3, options, nullptr, &stats);
+      check(cudaDeviceSynchronize(), "sync");
+      const double seconds = clock.lap();
+      neighbors = list.total();
+      peak = stats.peak_gpu_bytes;
+      return seconds;
+    };
+    try {
+      device_first = device_search();
+      for (int r = 0; r < reps; ++r) device_times.push_back(device_search());
+      std::vector<double> moved = p.points.xyz;
+      for (std::size_t i = 0; i < values; ++i) moved[i] += 0.01 * p.horizon * std::sin(static_cast<double>(i));
+      check(cudaMemcpy(device_xyz, moved.data(), values * sizeof(double), cudaMemcpyHostToDevice), "copy points");
+      device_moved = device_search();
+      check(cudaMemcpy(device_xyz, p.points.xyz.data(), values * sizeof(double), cudaMemcpyHostToDevice), "copy points");
+    } catch (const DeviceOutOfMemory& e) {
+      device_fits = false;
+      std::fprintf(stderr, "device-resident n=%d m=%g: %s\n", p.n, p.m, e.what());
+    }
+    // The naive kernel on the same points (k = 1, Euclidean, full lists, unsorted rows).
+    std::vector<double> naive_times;
+    for (int r = 0; r < reps + 1 && device_fits && k == 1; ++r) {
+      const bench::NaiveGpuResult naive = bench::naive_gpu_cell_list(device_xyz, p.points.size(), p.horizon);
+      if (r > 0) naive_times.push_back(naive.seconds);  // the first run warms up
+      if (naive.entries != neighbors)
+        std::fprintf(stderr, "MISMATCH: naive %lld vs horizon %lld\n", static_cast<long long>(naive.entries),
+                     static_cast<long long>(neighbors));
     }
     cudaFree(device_xyz);
 
@@ -158,6 +183,7 @@ int main(int argc, char** argv) {
     const double list_bytes = static_cast<double>(neighbors) * 4 + (n_points + 1) * 8;
     const double copy_floor = n_points * 24 / bw.host_to_device + list_bytes / bw.device_to_host;
     const double device_s = device_fits ? median(device_times) : 0.0;
+    const double naive_s = naive_times.empty() ? 0.0 : median(naive_times);
     const double device_floor = list_bytes / bw.device_write;
 
     // openmp on every core of the GPU's host.
@@ -171,9 +197,11 @@ int main(int argc, char** argv) {
       if (list.total() != neighbors) std::fprintf(stderr, "MISMATCH: openmp %lld vs cuda %lld\n",
                                                   static_cast<long long>(list.total()), static_cast<long long>(neighbors));
     }
-    std::printf("%s,%d,%zu,%g,%lld,%.5f,%.4g,%.5f,%.2f,%.4f,%.4g,%.4f,%.4f,%.4f,%.4f,%.2f,%.4f,%.4g,%.1f,%.2f\n",
+    std::printf("%s,%d,%zu,%g,%lld,%.5f,%.4g,%.5f,%.5f,%.5f,%.4g,%.2f,%.5f,%.2f,%.4f,%.4g,%.4f,%.4f,%.4f,%.4f,%.2f,%.4f,%.4g,%.1f,%.2f\n",
                 p.name.c_str(), p.n, p.points.size(), p.m, static_cast<long long>(neighbors), device_s,
-                device_s > 0 ? n_points / device_s : 0.0, device_floor, device_s > 0 ? device_s / device_floor : 0.0,
+                device_s > 0 ? n_points / device_s : 0.0, device_first, device_moved, naive_s,
+                naive_s > 0 ? n_points / naive_s : 0.0, device_s > 0 && naive_s > 0 ? naive_s / device_s : 0.0,
+                device_floor, device_s > 0 ? device_s / device_floor : 0.0,
                 host_s, host_s > 0 ? n_points / host_s : 0.0, host_stats.host_to_device_seconds, host_stats.kernel_seconds,
                 host_stats.device_to_host_seconds, copy_floor, host_s > 0 ? host_s / copy_floor : 0.0, openmp_s,
                 openmp_s > 0 ? n_points / openmp_s : 0.0, openmp_s > 0 ? openmp_s / host_s : 0.0,

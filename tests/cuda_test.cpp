@@ -2,8 +2,11 @@
 // The oracle cases for the cuda backend are in oracle_test.cpp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "horizon/cuda.hpp"
 #include "horizon/generate.hpp"
@@ -54,6 +57,33 @@ TEST(Cuda, RowsOfEveryLengthAreSorted) {
   }
 }
 
+TEST(Cuda, UnsortedRowsHoldTheSameFamilies) {
+  REQUIRE_GPU();
+  for (double horizon : {0.3, 0.6}) {  // short rows and rows of ~100
+    const PointSet points = random_cloud(40000, 3, 3);
+    SearchOptions options = options_for(horizon, Backend::cuda);
+    options.sort_rows = false;
+    const NeighborList unsorted = search(points.view(), options);
+    const NeighborList sorted = search(points.view(), options_for(horizon, Backend::serial));
+    ASSERT_EQ(unsorted.offsets(), sorted.offsets());
+    for (std::size_t i = 0; i < sorted.size(); ++i) {
+      std::vector<point_id> row(unsorted.row(i).begin(), unsorted.row(i).end());
+      std::sort(row.begin(), row.end());
+      ASSERT_TRUE(std::equal(row.begin(), row.end(), sorted.row(i).begin(), sorted.row(i).end())) << i;
+    }
+  }
+}
+
+TEST(Cuda, Float32InputThroughSeveralStagingBuffers) {
+  REQUIRE_GPU();
+  // 3.2 M points of 3 float32 coordinates: 77 MB as doubles, more than one staging buffer.
+  const PointSet points = random_cloud(3200000, 3, 12);
+  std::vector<float> single(points.xyz.begin(), points.xyz.end());
+  const PointSet promoted{3, std::vector<double>(single.begin(), single.end())};
+  const SearchOptions options = options_for(0.05, Backend::cuda);
+  EXPECT_EQ(search(PointView(single.data(), promoted.size(), 3), options), search(promoted.view(), options));
+}
+
 TEST(Cuda, QueriesMatchTheCpu) {
   REQUIRE_GPU();
   const PointSet points = random_cloud(30000, 3, 2);
@@ -96,6 +126,25 @@ TEST(Cuda, DeviceResidentSearchEqualsHostSearch) {
     cudaStreamDestroy(stream);
     cudaFree(device_xyz);
   }
+}
+
+TEST(Cuda, RepeatedDeviceSearchesOfMovingPointsStayExact) {
+  REQUIRE_GPU();
+  // A solver's loop: the same buffers searched again after the points move (the memory pool
+  // hands back the previous step's memory).
+  PointSet points = random_cloud(60000, 3, 21);
+  double* device_xyz = nullptr;
+  ASSERT_EQ(cudaMalloc(&device_xyz, points.xyz.size() * sizeof(double)), cudaSuccess);
+  const SearchOptions options = options_for(0.6, Backend::serial);
+  for (int step = 0; step < 3; ++step) {
+    for (std::size_t i = 0; i < points.xyz.size(); ++i) points.xyz[i] += 0.01 * std::sin(static_cast<double>(i + step));
+    ASSERT_EQ(cudaMemcpy(device_xyz, points.xyz.data(), points.xyz.size() * sizeof(double), cudaMemcpyHostToDevice),
+              cudaSuccess);
+    const DeviceNeighborList on_gpu = search_device(device_xyz, points.size(), 3, options);
+    EXPECT_EQ(on_gpu.to_host(false), search(points.view(), options)) << step;
+  }
+  cudaFree(device_xyz);
+  cuda_release_cached_memory(0);
 }
 
 TEST(Cuda, ErrorsAreClear) {

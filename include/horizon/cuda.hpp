@@ -24,7 +24,9 @@ public:
   std::size_t bytes_needed, bytes_available;
 };
 
-/// A neighbour list in GPU memory (CSR as in NeighborList), freed with the object.
+/// A neighbour list in GPU memory (CSR as in NeighborList). Its memory comes from horizon's
+/// pool on the device and goes back to it, ordered on the stream the list was built on, when
+/// the object is destroyed: keep that stream alive as long as the list.
 class DeviceNeighborList {
 public:
   DeviceNeighborList() = default;
@@ -32,17 +34,19 @@ public:
   std::int64_t total() const { return total_; }
   const std::int64_t* offsets() const { return offsets_.get(); }  ///< size()+1 entries
   const point_id* indices() const { return indices_.get(); }      ///< total() entries
-  /// Copies the list to the host.
+  /// Copies the list to the host (on the stream it was built on).
   NeighborList to_host(bool half) const;
 
 private:
   friend DeviceNeighborList search_device(const double*, std::size_t, int, const SearchOptions&,
                                           cuda_stream, SearchStats*);
   struct Free {
+    cuda_stream stream;  // value-initialised (null) by unique_ptr's default constructor
     void operator()(void* pointer) const;
   };
   std::unique_ptr<std::int64_t, Free> offsets_;
   std::unique_ptr<point_id, Free> indices_;
+  cuda_stream stream_ = nullptr;
   std::size_t points_ = 0;
   std::int64_t total_ = 0;
 };
@@ -53,6 +57,11 @@ private:
 DeviceNeighborList search_device(const double* xyz, std::size_t count, int dims,
                                  const SearchOptions& options, cuda_stream stream = nullptr,
                                  SearchStats* stats = nullptr);
+
+/// horizon keeps the GPU memory of finished searches in a per-device pool, so that repeated
+/// searches allocate nothing; this returns the unused part to the driver (after waiting for
+/// the device). Call it when other code needs that memory.
+void cuda_release_cached_memory(int device = 0);
 
 /// Name of a CUDA device, or "" when there is none.
 std::string cuda_device_name(int device);

@@ -23,6 +23,7 @@ DeviceNeighborList search_device(const double*, std::size_t, int, const SearchOp
                                  SearchStats*) {
   no_cuda();
 }
+void cuda_release_cached_memory(int) {}
 std::string cuda_device_name(int) { return ""; }
 
 }  // namespace horizon

@@ -7,6 +7,8 @@
 #include <thrust/iterator/counting_iterator.h>
 #include <thrust/iterator/transform_iterator.h>
 
+#include <limits>
+
 #include "device_memory.hpp"
 #include "horizon/grid.hpp"
 #include "horizon/search.hpp"
@@ -112,6 +114,15 @@ __device__ std::int64_t lower_bound(const T* sorted, std::int64_t n, T value) {
   return lo;
 }
 
+// flags[p] = whether sorted position p is the first of its cell (dense: linear ids in a;
+// sparse: cell coordinates in a, b, c).
+__global__ void mark_cell_firsts(const std::int64_t* a, const std::int64_t* b, const std::int64_t* c,
+                                 std::int64_t n, unsigned char* flags) {
+  const std::int64_t p = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
+  if (p >= n) return;
+  flags[p] = p == 0 || a[p] != a[p - 1] || (b && (b[p] != b[p - 1] || c[p] != c[p - 1]));
+}
+
 // start[c] = first sorted position of a cell with linear id >= c.
 __global__ void cell_starts(const std::int64_t* sorted_keys, std::int64_t n, std::int64_t cells,
                             std::int64_t* start) {
@@ -127,6 +138,8 @@ struct DeviceIndexView {
   const point_id* order;
   const std::int64_t* start;              // dense: linear id -> first sorted position
   const std::int64_t *kx, *ky, *kz;       // sparse: sorted cell coordinates per point
+  const std::int64_t* cell_first;         // first sorted position of each occupied cell
+  const std::int64_t* cell_count;         // number of occupied cells (one value)
 
   // Sorted positions of the cells (cx-k .. cx+k, cy, cz).
   __device__ void row(std::int64_t cx, std::int64_t cy, std::int64_t cz, std::int64_t& begin,
@@ -158,11 +171,13 @@ public:
   DeviceIndex(const double* xyz, std::size_t count, int dims, const SearchOptions& options,
               cudaStream_t stream, MemoryMeter& meter)
       : n_(static_cast<std::int64_t>(count)), x_(count, meter), y_(count, meter), z_(count, meter),
-        order_(count, meter), start_(0, meter), kx_(0, meter), ky_(0, meter), kz_(0, meter) {
+        order_(count, meter), start_(0, meter), kx_(0, meter), ky_(0, meter), kz_(0, meter),
+        cell_first_(count, meter), cell_count_(1, meter) {
     grid_ = Grid::from_bounds(reduce_bounds(xyz, count, dims, stream, meter), dims, count, options.horizon,
                               options.cells_per_horizon);
     const GridParams g = params_of(grid_);
     DeviceArray<point_id> ids(count, meter), ids_sorted(count, meter);
+    DeviceArray<unsigned char> firsts(count, meter);
     if (g.dense) {
       DeviceArray<std::int64_t> keys(count, meter), sorted(count, meter);
       cell_keys<<<blocks_for(count), block_size, 0, stream>>>(xyz, n_, g, keys.get(), nullptr, nullptr, nullptr, ids.get());
@@ -175,17 +190,22 @@ public:
       cell_starts<<<blocks_for(static_cast<std::size_t>(cells) + 1), block_size, 0, stream>>>(
           sorted.get(), n_, cells, start_.get());
       check_launch("cell_starts");
+      mark_cell_firsts<<<blocks_for(count), block_size, 0, stream>>>(sorted.get(), nullptr, nullptr, n_, firsts.get());
     } else {
       sort_sparse(xyz, g, ids, ids_sorted, stream, meter);
+      mark_cell_firsts<<<blocks_for(count), block_size, 0, stream>>>(kx_.get(), ky_.get(), kz_.get(), n_, firsts.get());
     }
+    check_launch("mark_cell_firsts");
+    list_cells(firsts.get(), stream, meter);
     gather_coords<<<blocks_for(count), block_size, 0, stream>>>(xyz, dims, order_.get(), n_, x_.get(), y_.get(), z_.get());
     check_launch("gather_coords");
   }
 
   DeviceIndexView view(std::size_t queries) const {
     return {params_of(grid_), n_, queries ? static_cast<std::int64_t>(queries) : n_, x_.get(), y_.get(), z_.get(), order_.get(), start_.get(),
-            kx_.get(), ky_.get(), kz_.get()};
+            kx_.get(), ky_.get(), kz_.get(), cell_first_.get(), cell_count_.get()};
   }
+  std::int64_t size() const { return n_; }
 
 private:
   static Bounds reduce_bounds(const double* xyz, std::size_t count, int dims, cudaStream_t stream,
@@ -194,21 +214,32 @@ private:
                   point_id* ids_sorted, int bits, cudaStream_t stream, MemoryMeter& meter) const;
   void sort_sparse(const double* xyz, const GridParams& g, DeviceArray<point_id>& ids,
                    DeviceArray<point_id>& ids_sorted, cudaStream_t stream, MemoryMeter& meter);
+  void list_cells(const unsigned char* firsts, cudaStream_t stream, MemoryMeter& meter);
 
   std::int64_t n_;
   Grid grid_;
   DeviceArray<double> x_, y_, z_;
   DeviceArray<point_id> order_;
   DeviceArray<std::int64_t> start_, kx_, ky_, kz_;
+  DeviceArray<std::int64_t> cell_first_, cell_count_;
 };
+
+// The occupied cells, by their first sorted position; their number stays on the device (the
+// per-cell kernels read it), so listing them costs no synchronisation.
+void DeviceIndex::list_cells(const unsigned char* firsts, cudaStream_t stream, MemoryMeter& meter) {
+  const thrust::counting_iterator<std::int64_t> positions(0);
+  std::size_t temp_bytes = 0;
+  HORIZON_CUDA_CHECK(cub::DeviceSelect::Flagged(nullptr, temp_bytes, positions, firsts, cell_first_.get(),
+                                                cell_count_.get(), n_, stream));
+  DeviceArray<char> temp(temp_bytes, meter);
+  HORIZON_CUDA_CHECK(cub::DeviceSelect::Flagged(temp.get(), temp_bytes, positions, firsts, cell_first_.get(),
+                                                cell_count_.get(), n_, stream));
+}
 
 Bounds DeviceIndex::reduce_bounds(const double* xyz, std::size_t count, int dims,
                                   cudaStream_t stream, MemoryMeter& meter) {
-  // The reduction starts from the first point's box (zeros in unused axes).
-  double first[3] = {0, 0, 0};
-  HORIZON_CUDA_CHECK(cudaMemcpyAsync(first, xyz, dims * sizeof(double), cudaMemcpyDeviceToHost, stream));
-  HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
-  const Box init{{first[0], first[1], first[2]}, {first[0], first[1], first[2]}};
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  const Box init{{inf, inf, inf}, {-inf, -inf, -inf}};
   const auto boxes = thrust::make_transform_iterator(thrust::counting_iterator<std::int64_t>(0), PointBox{xyz, dims});
   DeviceArray<Box> result(1, meter);
   std::size_t temp_bytes = 0;

@@ -1,8 +1,12 @@
 #pragma once
-// CUDA error checks that throw horizon::Error naming the call, and device arrays that count
-// the GPU memory they hold so a search can report its peak.
+// CUDA error checks that throw horizon::Error naming the call, and device arrays drawn from
+// a per-device stream-ordered memory pool that keeps freed memory for the next search (a
+// solver searching every time step pays no cudaMalloc, cudaFree or implied synchronisation),
+// counting the GPU memory they hold so a search can report its peak.
 #include <cuda_runtime.h>
 
+#include <cstdint>
+#include <mutex>
 #include <string>
 
 #include "horizon/error.hpp"
@@ -16,8 +20,41 @@ inline void cuda_check(cudaError_t status, const char* call, const char* file, i
 }
 #define HORIZON_CUDA_CHECK(call) ::horizon::detail::cuda_check((call), #call, __FILE__, __LINE__)
 
-/// Bytes of GPU memory held through DeviceArray now and at most since reset.
+/// horizon's memory pool on `device`, created on first use; it never returns memory to the
+/// driver by itself (cuda_release_cached_memory() does).
+inline cudaMemPool_t device_pool(int device) {
+  constexpr int most_devices = 64;
+  static std::mutex guard;
+  static cudaMemPool_t pools[most_devices] = {};
+  if (device < 0 || device >= most_devices) throw Error("CUDA device " + std::to_string(device) + " is out of range");
+  std::lock_guard<std::mutex> lock(guard);
+  if (!pools[device]) {
+    cudaMemPoolProps props{};
+    props.allocType = cudaMemAllocationTypePinned;
+    props.location.type = cudaMemLocationTypeDevice;
+    props.location.id = device;
+    cuda_check(cudaMemPoolCreate(&pools[device], &props), "cudaMemPoolCreate", __FILE__, __LINE__);
+    std::uint64_t keep_all = UINT64_MAX;
+    cuda_check(cudaMemPoolSetAttribute(pools[device], cudaMemPoolAttrReleaseThreshold, &keep_all),
+               "cudaMemPoolSetAttribute", __FILE__, __LINE__);
+  }
+  return pools[device];
+}
+
+/// Bytes the pool holds but no array uses: free for the next allocation from it.
+inline std::size_t pool_spare_bytes(cudaMemPool_t pool) {
+  std::uint64_t reserved = 0, used = 0;
+  cuda_check(cudaMemPoolGetAttribute(pool, cudaMemPoolAttrReservedMemCurrent, &reserved), "cudaMemPoolGetAttribute", __FILE__, __LINE__);
+  cuda_check(cudaMemPoolGetAttribute(pool, cudaMemPoolAttrUsedMemCurrent, &used), "cudaMemPoolGetAttribute", __FILE__, __LINE__);
+  return static_cast<std::size_t>(reserved - used);
+}
+
+/// Where a search's arrays come from (the device's pool, ordered on the search's stream) and
+/// the bytes they hold now and at most.
 struct MemoryMeter {
+  MemoryMeter(int device, cudaStream_t s) : pool(device_pool(device)), stream(s) {}
+  cudaMemPool_t pool;
+  cudaStream_t stream;
   std::size_t now = 0, peak = 0;
 };
 
@@ -26,7 +63,7 @@ class DeviceArray {
 public:
   DeviceArray(std::size_t count, MemoryMeter& meter) : size_(count), meter_(&meter) {
     if (count == 0) return;
-    HORIZON_CUDA_CHECK(cudaMalloc(&data_, count * sizeof(T)));
+    HORIZON_CUDA_CHECK(cudaMallocFromPoolAsync(reinterpret_cast<void**>(&data_), count * sizeof(T), meter.pool, meter.stream));
     meter_->now += bytes();
     meter_->peak = std::max(meter_->peak, meter_->now);
   }
@@ -53,7 +90,7 @@ public:
   T* get() const { return data_; }
   std::size_t size() const { return size_; }
   std::size_t bytes() const { return size_ * sizeof(T); }
-  /// Gives up ownership (the caller frees with cudaFree).
+  /// Gives up ownership (the caller frees with cudaFreeAsync on the meter's stream).
   T* release() {
     meter_->now -= bytes();
     T* data = data_;
@@ -64,7 +101,7 @@ public:
   void reset() {
     if (!data_) return;
     meter_->now -= bytes();
-    cudaFree(data_);
+    cudaFreeAsync(data_, meter_->stream);
     data_ = nullptr;
     size_ = 0;
   }

@@ -1,0 +1,201 @@
+#pragma once
+// Included by search.cu only (one translation unit): definitions in an anonymous namespace.
+// The per-cell build kernel. A block takes an occupied cell, stages the cell's stencil in
+// shared memory once (read coalesced: (2k+1)^2 runs of 2k+1 adjacent cells in 3-D), sorted by
+// id when rows are to be sorted; then a warp per point of the cell sweeps the staged
+// candidates 32 at a time and stores each sweep's hits as one coalesced piece of the row.
+// Every point of the cell tests the candidates in id order, so rows come out sorted without
+// a sort per row, and the cell's points share one staging and one sort. A stencil larger
+// than the stage is swept from global memory instead, leaving its rows unsorted (the caller
+// then sorts rows; the count pass reports the widest stencil so it knows before the fill).
+#include <cub/block/block_radix_sort.cuh>
+
+#include "device_index.cuh"
+#include "horizon/metric.hpp"
+
+namespace horizon::detail {
+namespace {
+
+constexpr int cell_block = 128, cell_warps = cell_block / 32;
+constexpr int most_runs = 49;  // (2k+1)^2 runs of a 3-D stencil, up to k = 3
+constexpr int wide_stage = 8;  // items per thread of the stage: 1024 candidates
+
+enum class Pass { count, fill, fill_sorted };
+
+/// What one pass writes: counts (count pass, with the widest stencil), or rows of the ids in
+/// [first, last) at out[offsets[id] - base] (fill passes).
+struct PassArgs {
+  double threshold;
+  int sort_bits;  // ids are below 2^sort_bits - 1
+  std::int64_t* counts;
+  unsigned long long* widest;
+  const std::int64_t* offsets;
+  point_id* out;
+  point_id first, last;
+  std::int64_t base;
+};
+
+template <int Items>
+struct Stage {
+  static constexpr int capacity = cell_block * Items;
+  using Sort = cub::BlockRadixSort<point_id, cell_block, Items, point_id>;
+  union {
+    typename Sort::TempStorage sort;  // used before the coordinates are written
+    struct {
+      double x[capacity], y[capacity], z[capacity];
+    } at;
+  };
+  point_id id[capacity];
+  std::int64_t run_begin[most_runs];
+  int run_prefix[most_runs + 1];
+  int runs;
+};
+
+/// Sorted position of the i-th candidate of the staged stencil.
+template <int Items>
+__device__ std::int64_t position_of(const Stage<Items>& s, int i) {
+  int r = 0;
+  while (s.run_prefix[r + 1] <= i) ++r;
+  return s.run_begin[r] + (i - s.run_prefix[r]);
+}
+
+/// One warp sweeps `count` candidates for the point at sorted position p; `candidate(i, x, y,
+/// z, id)` reads the i-th. Returns the family's size; fill passes store it at `row`.
+template <Metric M, int D, bool Half, bool Fill, typename Candidate>
+__device__ int sweep(double xi, double yi, double zi, point_id self, int count, double threshold,
+                     point_id* row, int found, Candidate candidate) {
+  const int lane = threadIdx.x % 32;
+  for (int i0 = 0; i0 < count; i0 += 32) {
+    const int i = i0 + lane;
+    bool hit = false;
+    point_id other = 0;
+    if (i < count) {
+      double x, y, z;
+      candidate(i, x, y, z, other);
+      const double d = metric_accumulate<M>(xi - x, yi - y, D == 3 ? zi - z : 0.0);
+      hit = d < threshold && (Half ? other > self : other != self);
+    }
+    const unsigned ballot = __ballot_sync(0xffffffffu, hit);
+    if (Fill && hit) row[found + __popc(ballot & ((1u << lane) - 1))] = other;
+    found += __popc(ballot);
+  }
+  return found;
+}
+
+template <Metric M, int D, bool Half, Pass P, int Items>
+__global__ void __launch_bounds__(cell_block) cell_families(DeviceIndexView ix, PassArgs a) {
+  __shared__ Stage<Items> s;
+  constexpr bool fill = P != Pass::count;
+  const int warp = threadIdx.x / 32;
+  const std::int64_t cells = *ix.cell_count;
+  const int k = ix.grid.k, reach_z = D == 3 ? k : 0;
+  for (std::int64_t c = blockIdx.x; c < cells; c += gridDim.x) {
+    const std::int64_t b = ix.cell_first[c], e = c + 1 < cells ? ix.cell_first[c + 1] : ix.n;
+    if (threadIdx.x == 0) {
+      const std::int64_t cx = ix.grid.cell_of(ix.x[b], 0), cy = ix.grid.cell_of(ix.y[b], 1);
+      const std::int64_t cz = D == 3 ? ix.grid.cell_of(ix.z[b], 2) : 0;
+      int r = 0;
+      std::int64_t total = 0;
+      for (int dz = -reach_z; dz <= reach_z; ++dz)
+        for (int dy = -k; dy <= k; ++dy, ++r) {
+          std::int64_t begin, end;
+          ix.row(cx, cy + dy, cz + dz, begin, end);
+          s.run_begin[r] = begin;
+          s.run_prefix[r] = static_cast<int>(total);
+          total += end - begin;
+        }
+      s.run_prefix[r] = static_cast<int>(total);
+      s.runs = r;
+      if (P == Pass::count) atomicMax(a.widest, static_cast<unsigned long long>(total));
+    }
+    __syncthreads();
+    const int stencil = s.run_prefix[s.runs];
+    const bool staged = stencil <= Stage<Items>::capacity;
+    if (staged) {
+      if constexpr (P == Pass::fill_sorted) {
+        point_id keys[Items], where[Items];
+        for (int j = 0; j < Items; ++j) {
+          const int i = j * cell_block + static_cast<int>(threadIdx.x);
+          if (i < stencil) {
+            where[j] = static_cast<point_id>(position_of(s, i));
+            keys[j] = ix.order[where[j]];
+          } else {
+            keys[j] = static_cast<point_id>((1u << a.sort_bits) - 1);  // sorts after every id
+            where[j] = 0;
+          }
+        }
+        typename Stage<Items>::Sort(s.sort).SortBlockedToStriped(keys, where, 0, a.sort_bits);
+        __syncthreads();  // the sort's storage becomes the coordinates
+        for (int j = 0; j < Items; ++j) {
+          const int i = j * cell_block + static_cast<int>(threadIdx.x);
+          if (i < stencil) {
+            s.at.x[i] = ix.x[where[j]];
+            s.at.y[i] = ix.y[where[j]];
+            if (D == 3) s.at.z[i] = ix.z[where[j]];
+            s.id[i] = keys[j];
+          }
+        }
+      } else {
+        for (int i = threadIdx.x; i < stencil; i += cell_block) {
+          const std::int64_t q = position_of(s, i);
+          s.at.x[i] = ix.x[q];
+          s.at.y[i] = ix.y[q];
+          if (D == 3) s.at.z[i] = ix.z[q];
+          s.id[i] = ix.order[q];
+        }
+      }
+      __syncthreads();
+    }
+    for (std::int64_t p = b + warp; p < e; p += cell_warps) {
+      const point_id self = ix.order[p];
+      if (self >= ix.queries) {
+        if (P == Pass::count && threadIdx.x % 32 == 0) a.counts[self] = 0;
+        continue;
+      }
+      if (fill && (self < a.first || self >= a.last)) continue;
+      const double xi = ix.x[p], yi = ix.y[p], zi = D == 3 ? ix.z[p] : 0.0;
+      point_id* row = fill ? a.out + (a.offsets[self] - a.base) : nullptr;
+      int found = 0;
+      if (staged) {
+        found = sweep<M, D, Half, fill>(xi, yi, zi, self, stencil, a.threshold, row, 0,
+                                        [&](int i, double& x, double& y, double& z, point_id& id) {
+                                          x = s.at.x[i];
+                                          y = s.at.y[i];
+                                          z = D == 3 ? s.at.z[i] : 0.0;
+                                          id = s.id[i];
+                                        });
+      } else {
+        for (int r = 0; r < s.runs; ++r) {
+          const std::int64_t begin = s.run_begin[r];
+          found = sweep<M, D, Half, fill>(xi, yi, zi, self, s.run_prefix[r + 1] - s.run_prefix[r], a.threshold,
+                                          row, found, [&](int i, double& x, double& y, double& z, point_id& id) {
+                                            x = ix.x[begin + i];
+                                            y = ix.y[begin + i];
+                                            z = ix.z[begin + i];
+                                            id = ix.order[begin + i];
+                                          });
+        }
+      }
+      if (P == Pass::count && threadIdx.x % 32 == 0) a.counts[self] = found;
+    }
+    __syncthreads();  // the stage is rewritten for the next cell
+  }
+}
+
+/// Launches a pass of the per-cell kernel over every occupied cell, with as many blocks as
+/// the GPU holds at once (each takes cells in turn).
+template <Pass P, int Items, Metric M, int D, bool Half>
+void launch_cell_pass(const DeviceIndexView& ix, const PassArgs& args, cudaStream_t stream) {
+  const auto kernel = cell_families<M, D, Half, P, Items>;
+  int device = 0, processors = 0, per_processor = 0;
+  HORIZON_CUDA_CHECK(cudaGetDevice(&device));
+  HORIZON_CUDA_CHECK(cudaDeviceGetAttribute(&processors, cudaDevAttrMultiProcessorCount, device));
+  HORIZON_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_processor, kernel, cell_block, 0));
+  const std::int64_t most = std::max<std::int64_t>(1, ix.n);
+  const auto blocks = static_cast<unsigned>(std::min<std::int64_t>(most, std::int64_t{processors} * per_processor));
+  kernel<<<blocks, cell_block, 0, stream>>>(ix, args);
+  check_launch("cell_families");
+}
+
+}  // namespace
+}  // namespace horizon::detail

@@ -1,0 +1,87 @@
+#pragma once
+// Included by search.cu only (one translation unit): definitions in an anonymous namespace.
+// Host <-> device copies of pageable memory at close to pinned bandwidth: through two pinned
+// staging buffers, the DMA engine moving one while all cores fill or empty the other. The
+// buffers are allocated once per host thread and kept (pinning memory costs milliseconds).
+#include <cuda_runtime.h>
+
+#include <algorithm>
+#include <cstddef>
+
+#include "../../core/parallel_copy.hpp"
+#include "device_memory.hpp"
+
+namespace horizon::detail {
+namespace {
+
+constexpr std::size_t staging_bytes = std::size_t{64} << 20;
+
+class Staging {
+public:
+  Staging() = default;
+  Staging(const Staging&) = delete;
+  Staging& operator=(const Staging&) = delete;
+  ~Staging() {
+    if (!base_) return;
+    for (auto& e : done_) cudaEventDestroy(e);
+    cudaFreeHost(base_);
+  }
+  char* buffer(int i) {
+    if (!base_) {
+      HORIZON_CUDA_CHECK(cudaMallocHost(reinterpret_cast<void**>(&base_), 2 * staging_bytes));
+      for (auto& e : done_) HORIZON_CUDA_CHECK(cudaEventCreateWithFlags(&e, cudaEventDisableTiming));
+    }
+    return base_ + i * staging_bytes;
+  }
+  cudaEvent_t done(int i) const { return done_[i]; }
+
+private:
+  char* base_ = nullptr;
+  cudaEvent_t done_[2] = {};
+};
+
+Staging& staging() {
+  thread_local Staging buffers;
+  return buffers;
+}
+
+/// Device -> host: the GPU fills one staging buffer while all cores empty the other.
+void copy_to_host(void* host, const void* device, std::size_t bytes, cudaStream_t stream) {
+  if (bytes == 0) return;
+  Staging& s = staging();
+  const std::size_t chunks = (bytes + staging_bytes - 1) / staging_bytes;
+  auto issue = [&](std::size_t c) {
+    const std::size_t at = c * staging_bytes, size = std::min(staging_bytes, bytes - at);
+    HORIZON_CUDA_CHECK(cudaMemcpyAsync(s.buffer(c % 2), static_cast<const char*>(device) + at, size,
+                                       cudaMemcpyDeviceToHost, stream));
+    HORIZON_CUDA_CHECK(cudaEventRecord(s.done(c % 2), stream));
+  };
+  issue(0);
+  for (std::size_t c = 0; c < chunks; ++c) {
+    if (c + 1 < chunks) issue(c + 1);
+    HORIZON_CUDA_CHECK(cudaEventSynchronize(s.done(c % 2)));
+    const std::size_t at = c * staging_bytes, size = std::min(staging_bytes, bytes - at);
+    parallel_copy(static_cast<char*>(host) + at, s.buffer(c % 2), size);
+  }
+}
+
+/// Host -> device of the points' coordinates as doubles (float32 promoted on the way): all
+/// cores fill one staging buffer while the GPU takes the other.
+void upload_coordinates(double* device, PointView points, cudaStream_t stream) {
+  const std::size_t values = points.size() * static_cast<std::size_t>(points.dims());
+  const std::size_t per_chunk = staging_bytes / sizeof(double);
+  const std::size_t chunks = (values + per_chunk - 1) / per_chunk;
+  Staging& s = staging();
+  for (std::size_t c = 0; c < chunks; ++c) {
+    const std::size_t first = c * per_chunk, count = std::min(per_chunk, values - first);
+    auto* buffer = reinterpret_cast<double*>(s.buffer(c % 2));
+    if (c >= 2) HORIZON_CUDA_CHECK(cudaEventSynchronize(s.done(c % 2)));  // its last upload is done
+    parallel_copy_coordinates(buffer, points, first, count);
+    HORIZON_CUDA_CHECK(cudaMemcpyAsync(device + first, buffer, count * sizeof(double), cudaMemcpyHostToDevice, stream));
+    HORIZON_CUDA_CHECK(cudaEventRecord(s.done(c % 2), stream));
+  }
+  HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
+}
+
+}  // namespace
+}  // namespace horizon::detail
