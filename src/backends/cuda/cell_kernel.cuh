@@ -91,22 +91,24 @@ __global__ void __launch_bounds__(cell_block) cell_families(DeviceIndexView ix, 
   const int k = ix.grid.k, reach_z = D == 3 ? k : 0;
   for (std::int64_t c = blockIdx.x; c < cells; c += gridDim.x) {
     const std::int64_t b = ix.cell_first[c], e = c + 1 < cells ? ix.cell_first[c + 1] : ix.n;
-    if (threadIdx.x == 0) {
+    // The stencil's runs, one per thread (their lookups are independent loads), then their
+    // prefix on one thread.
+    const int runs = (2 * k + 1) * (2 * reach_z + 1);
+    if (threadIdx.x < runs) {
+      const int dy = static_cast<int>(threadIdx.x) % (2 * k + 1) - k, dz = static_cast<int>(threadIdx.x) / (2 * k + 1) - reach_z;
       const std::int64_t cx = ix.grid.cell_of(ix.x[b], 0), cy = ix.grid.cell_of(ix.y[b], 1);
       const std::int64_t cz = D == 3 ? ix.grid.cell_of(ix.z[b], 2) : 0;
-      int r = 0;
-      std::int64_t total = 0;
-      for (int dz = -reach_z; dz <= reach_z; ++dz)
-        for (int dy = -k; dy <= k; ++dy, ++r) {
-          std::int64_t begin, end;
-          ix.row(cx, cy + dy, cz + dz, begin, end);
-          s.run_begin[r] = begin;
-          s.run_prefix[r] = static_cast<int>(total);
-          total += end - begin;
-        }
-      s.run_prefix[r] = static_cast<int>(total);
-      s.runs = r;
-      if (P == Pass::count) atomicMax(a.widest, static_cast<unsigned long long>(total));
+      std::int64_t begin, end;
+      ix.row(cx, cy + dy, cz + dz, begin, end);
+      s.run_begin[threadIdx.x] = begin;
+      s.run_prefix[threadIdx.x + 1] = static_cast<int>(end - begin);
+    }
+    __syncthreads();
+    if (threadIdx.x == 0) {
+      s.run_prefix[0] = 0;
+      for (int r = 0; r < runs; ++r) s.run_prefix[r + 1] += s.run_prefix[r];
+      s.runs = runs;
+      if (P == Pass::count) atomicMax(a.widest, static_cast<unsigned long long>(s.run_prefix[runs]));
     }
     __syncthreads();
     const int stencil = s.run_prefix[s.runs];
