@@ -89,11 +89,9 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   const Bandwidth bw = measure_bandwidth();
-  const char* kernels = std::getenv("HORIZON_CUDA_KERNELS");
-  std::printf("# gpu: %s; cpu threads: %d; pinned h2d %.1f GB/s, d2h %.1f GB/s, device write %.0f GB/s; "
-              "build kernels: %s\n",
+  std::printf("# gpu: %s; cpu threads: %d; pinned h2d %.1f GB/s, d2h %.1f GB/s, device write %.0f GB/s\n",
               cuda_device_name(0).c_str(), omp_get_max_threads(), bw.host_to_device / 1e9,
-              bw.device_to_host / 1e9, bw.device_write / 1e9, kernels ? kernels : "cell");
+              bw.device_to_host / 1e9, bw.device_write / 1e9);
   std::printf("problem,n,points,m,neighbors,device_s,device_points_per_s,device_first_s,device_moved_s,"
               "naive_s,naive_points_per_s,device_vs_naive,device_floor_s,device_vs_floor,"
               "host_s,host_points_per_s,h2d_s,grid_s,kernels_s,d2h_s,copy_floor_s,host_vs_copy_floor,"

@@ -1,9 +1,7 @@
 #!/usr/bin/env bash
-# On the GPU machine: per-kernel durations (Nsight Compute, duration only) of one device-resident
-# search and of the naive anchor, lattice n = 200, both horizons, for the per-cell and per-point
-# build kernels. Usage: bash bench/gpu/device_profile.sh  (after device_build.sh; writes under $OUT)
-for kernels in cell point; do
-  HORIZON_CUDA_KERNELS=$kernels ncu --clock-control none --metrics gpu__time_duration.sum --csv \
-    "$BUILD/bin/horizon_gpu_bench" --sizes "${PROFILE_SIZES:-200}" --cloud-points 0 --reps 1 --no-host \
-    > "$OUT/ncu_$kernels.csv" 2> "$OUT/ncu_$kernels.err"
-done
+# On the GPU machine: per-kernel durations (Nsight Compute, duration only) of device-resident
+# searches and of the naive anchor, lattice n = 200, both horizons.
+# Usage: bash bench/gpu/device_profile.sh  (after device_build.sh; writes under $OUT)
+ncu --clock-control none --metrics gpu__time_duration.sum --csv \
+  "$BUILD/bin/horizon_gpu_bench" --sizes "${PROFILE_SIZES:-200}" --cloud-points 0 --reps 1 --no-host \
+  > "$OUT/ncu.csv" 2> "$OUT/ncu.err"

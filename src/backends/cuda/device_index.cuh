@@ -166,6 +166,19 @@ struct DeviceIndexView {
   }
 };
 
+/// What a pass writes: counts[id] = |family| and the widest stencil (count pass), or the rows
+/// of the ids in [first, last) at out[offsets[id] - base] (fill passes).
+struct PassArgs {
+  double threshold;
+  int sort_bits;  // ids are below 2^sort_bits - 1
+  std::int64_t* counts;
+  unsigned long long* widest;
+  const std::int64_t* offsets;
+  point_id* out;
+  point_id first, last;
+  std::int64_t base;
+};
+
 class DeviceIndex {
 public:
   DeviceIndex(const double* xyz, std::size_t count, int dims, const SearchOptions& options,

@@ -1,26 +1,28 @@
 // The CUDA backend (thesis ch. 5, done the modern way): a binning step that sorts points by
-// cell with CUB radix sort and builds a cell start table, then the build step in two passes,
-// count -> exclusive scan -> fill, so no row has a fixed maximum and offsets are 64-bit.
-// Rows are sorted on chip (row_sort.cuh, or fused with the fill for rows of 65-256; CUB's
-// segmented sort for rows over 2048). The pair test is metric_accumulate(),
-// compiled with -fmad=false, so every decision matches the CPU backends bit for bit.
+// cell with CUB radix sort and builds a cell start table (device_index.cuh), then the build
+// step in two passes, count -> scan -> fill, so no row has a fixed maximum and offsets are
+// 64-bit. The fill kernel follows what the count found: short rows staged and sorted per
+// thread (point_kernel.cuh), longer ones per cell with the stencil sorted once so rows come
+// out sorted (cell_kernel.cuh), and, for stencils too wide to stage, straight stores and a
+// sort after (row_sort.cuh). The pair test is metric_accumulate(), compiled with
+// -fmad=false, so every decision matches the CPU backends bit for bit. Memory comes from a
+// pool kept between calls (device_memory.hpp); host copies go through pinned staging
+// (host_copy.cuh).
 #include <cub/cub.cuh>
 #include <thrust/iterator/counting_iterator.h>
 #include <thrust/iterator/transform_iterator.h>
 
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
-#include <cstring>
 #include <type_traits>
-#include <vector>
 
 #include "../backends.hpp"
-#include "device_index.cuh"
 #include "cell_kernel.cuh"
+#include "device_index.cuh"
 #include "device_memory.hpp"
 #include "host_copy.cuh"
 #include "launch.cuh"
+#include "point_kernel.cuh"
 #include "row_sort.cuh"
 #include "horizon/cuda.hpp"
 #include "horizon/grid.hpp"
@@ -50,68 +52,7 @@ void with_shape(Metric metric, int dims, bool half, F&& f) {
   }
 }
 
-/// Which build kernels run: per cell (cell_kernel.cuh, the default) or per point (a thread
-/// per point, a warp per point for rows of 65-256, rows sorted after the fill). The per-point
-/// kernels stay for comparison in the benchmark: HORIZON_CUDA_KERNELS=point.
-bool per_cell_kernels() {
-  static const bool cell = [] {
-    const char* choice = std::getenv("HORIZON_CUDA_KERNELS");
-    return !choice || std::strcmp(choice, "point") != 0;
-  }();
-  return cell;
-}
-
-template <Pass P, int Items>
-void cell_pass(const DeviceIndexView& ix, const SearchOptions& o, const PassArgs& args, cudaStream_t stream) {
-  with_shape(o.metric, ix.grid.dims, o.half, [&](auto m, auto d, auto h) {
-    launch_cell_pass<P, Items, decltype(m)::value, decltype(d)::value, decltype(h)::value>(ix, args, stream);
-  });
-}
-
-/// One thread per point in sorted order, so a warp's points share most of their candidates.
-/// Counting writes counts[id] = |family|; filling writes the family of each point whose id is
-/// in [first, last) at out[offsets[id] - base].
-template <Metric M, int D, bool Half, bool Fill>
-__global__ void point_families(DeviceIndexView ix, PassArgs a) {
-  const std::int64_t p = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
-  if (p >= ix.n) return;
-  const point_id self = ix.order[p];
-  if (self >= ix.queries) {
-    if (!Fill) a.counts[self] = 0;
-    return;
-  }
-  if (Fill && (self < a.first || self >= a.last)) return;
-  const double xi = ix.x[p], yi = ix.y[p], zi = ix.z[p];
-  const std::int64_t cx = ix.grid.cell_of(xi, 0), cy = ix.grid.cell_of(yi, 1);
-  const std::int64_t cz = D == 3 ? ix.grid.cell_of(zi, 2) : 0;
-  const int k = ix.grid.k, reach_z = D == 3 ? k : 0;
-  point_id* row = Fill ? a.out + (a.offsets[self] - a.base) : nullptr;
-  std::int64_t found = 0;
-  for (int dz = -reach_z; dz <= reach_z; ++dz)
-    for (int dy = -k; dy <= k; ++dy) {
-      std::int64_t begin, end;
-      ix.row(cx, cy + dy, cz + dz, begin, end);
-      for (std::int64_t q = begin; q < end; ++q) {
-        const double d = metric_accumulate<M>(xi - ix.x[q], yi - ix.y[q], D == 3 ? zi - ix.z[q] : 0.0);
-        const point_id other = ix.order[q];
-        const bool keep = Half ? other > self : q != p;
-        if (d < a.threshold && keep) {
-          if (Fill) row[found] = other;
-          ++found;
-        }
-      }
-    }
-  if (!Fill) a.counts[self] = found;
-}
-
-template <bool Fill>
-void point_pass(const DeviceIndexView& ix, const SearchOptions& o, const PassArgs& args, cudaStream_t stream) {
-  with_shape(o.metric, ix.grid.dims, o.half, [&](auto m, auto d, auto h) {
-    point_families<decltype(m)::value, decltype(d)::value, decltype(h)::value, Fill>
-        <<<blocks_for(static_cast<std::size_t>(ix.n)), block_size, 0, stream>>>(ix, args);
-    check_launch("point_families");
-  });
-}
+#define HORIZON_SHAPE(m, d, h) decltype(m)::value, decltype(d)::value, decltype(h)::value
 
 /// Bits a radix sort of ids needs, with 2^bits - 1 free to pad with.
 int id_bits(std::int64_t n) {
@@ -142,8 +83,11 @@ Counts count_offsets(const DeviceIndex& index, const SearchOptions& options, std
   PassArgs args = pass_args(options, index.size());
   args.counts = counts.get();
   args.widest = reinterpret_cast<unsigned long long*>(summary.get() + 2);
-  if (per_cell_kernels()) cell_pass<Pass::count, wide_stage>(index.view(options.queries), options, args, stream);
-  else point_pass<false>(index.view(options.queries), options, args, stream);
+  const DeviceIndexView ix = index.view(options.queries);
+  with_shape(options.metric, ix.grid.dims, options.half, [&](auto m, auto d, auto h) {
+    count_families<HORIZON_SHAPE(m, d, h)><<<blocks_for(count), block_size, 0, stream>>>(ix, args);
+  });
+  check_launch("count_families");
   HORIZON_CUDA_CHECK(cudaMemsetAsync(offsets.get(), 0, sizeof(std::int64_t), stream));
   std::size_t temp_bytes = 0, max_bytes = 0;
   HORIZON_CUDA_CHECK(cub::DeviceScan::InclusiveSum(nullptr, temp_bytes, counts.get(), offsets.get() + 1,
@@ -177,80 +121,22 @@ std::size_t sort_scratch_bytes(std::int64_t entries, std::int64_t rows, const st
   return bytes;
 }
 
-constexpr int fused_min = 64;  // per-point kernels: longer rows take the fused kernel
+/// The fill kernel, by the longest row and the widest stencil the count pass found.
+enum class Fill {
+  short_rows,  // rows of up to staged_row, staged and sorted per thread (point_kernel.cuh)
+  per_cell,    // stencils of up to the stage's capacity, sorted once per cell (cell_kernel.cuh)
+  per_point    // anything else: straight stores, rows sorted afterwards (row_sort.cuh)
+};
 
-// ---- Per-point kernels: fused fill and sort for rows of 65 to 256 ------------------------------
-// A warp per point: lanes test 32 consecutive candidates at once (coalesced loads), ballot the
-// hits into a row staged in shared memory, sort it in registers (cub::WarpMergeSort) and store it
-// with coalesced writes. Nsight Compute on the two-kernel path (n = 200, m = 3.015, H100): the
-// thread-per-point fill spent 21.5 ms on uncoalesced row stores, the warp sort 10.8 ms on
-// blocked loads.
-
-template <Metric M, int D, bool Half, int Items>
-__global__ void __launch_bounds__(block_size) fill_sorted_rows(DeviceIndexView ix, PassArgs a) {
-  constexpr int warps = block_size / 32, capacity = 32 * Items;
-  using WarpSort = cub::WarpMergeSort<point_id, Items, 32>;
-  __shared__ typename WarpSort::TempStorage temp[warps];
-  __shared__ point_id staged[warps][capacity];
-  const int warp = threadIdx.x / 32, lane = threadIdx.x % 32;
-  const std::int64_t p = blockIdx.x * static_cast<std::int64_t>(warps) + warp;
-  if (p >= ix.n) return;
-  const point_id self = ix.order[p];
-  if (self >= ix.queries || self < a.first || self >= a.last) return;  // uniform across the warp
-  const double xi = ix.x[p], yi = ix.y[p], zi = ix.z[p];
-  const std::int64_t cx = ix.grid.cell_of(xi, 0), cy = ix.grid.cell_of(yi, 1);
-  const std::int64_t cz = D == 3 ? ix.grid.cell_of(zi, 2) : 0;
-  const int k = ix.grid.k, reach_z = D == 3 ? k : 0;
-  point_id* row = staged[warp];
-  int found = 0;
-  for (int dz = -reach_z; dz <= reach_z; ++dz)
-    for (int dy = -k; dy <= k; ++dy) {
-      std::int64_t begin, end;
-      ix.row(cx, cy + dy, cz + dz, begin, end);
-      found = sweep<M, D, Half, true>(xi, yi, zi, self, static_cast<int>(end - begin), a.threshold, row, found,
-                                      [&](int i, double& x, double& y, double& z, point_id& id) {
-                                        x = ix.x[begin + i];
-                                        y = ix.y[begin + i];
-                                        z = ix.z[begin + i];
-                                        id = ix.order[begin + i];
-                                      });
-    }
-  __syncwarp();
-  point_id keys[Items];
-  for (int i = 0; i < Items; ++i) {
-    const int at = lane * Items + i;
-    keys[i] = at < found ? row[at] : INT_MAX;
-  }
-  WarpSort(temp[warp]).Sort(keys, IdLess());
-  __syncwarp();
-  for (int i = 0; i < Items; ++i) row[lane * Items + i] = keys[i];
-  __syncwarp();
-  point_id* destination = a.out + (a.offsets[self] - a.base);
-  for (int at = lane; at < found; at += 32) destination[at] = row[at];
-}
-
-void fused_pass(const DeviceIndexView& ix, const SearchOptions& o, const PassArgs& args, std::int64_t longest,
-                cudaStream_t stream) {
-  const unsigned blocks = blocks_for(static_cast<std::size_t>(ix.n) * 32);
-  with_shape(o.metric, ix.grid.dims, o.half, [&](auto m, auto d, auto h) {
-    constexpr Metric M = decltype(m)::value;
-    constexpr int D = decltype(d)::value;
-    constexpr bool Half = decltype(h)::value;
-    if (longest <= 128) fill_sorted_rows<M, D, Half, 4><<<blocks, block_size, 0, stream>>>(ix, args);
-    else fill_sorted_rows<M, D, Half, 8><<<blocks, block_size, 0, stream>>>(ix, args);
-    check_launch("fill_sorted_rows");
-  });
-}
-
-/// Whether the fill itself leaves rows sorted (else they are sorted after it).
-bool fill_sorts(const SearchOptions& options, const Counts& counts) {
-  if (per_cell_kernels()) return counts.widest <= Stage<wide_stage>::capacity;
-  return counts.longest > fused_min && counts.longest <= warp_row;
+Fill fill_kind(const Counts& counts) {
+  if (counts.longest <= staged_row) return Fill::short_rows;
+  if (counts.widest <= Stage<wide_stage>::capacity) return Fill::per_cell;
+  return Fill::per_point;
 }
 
 /// Whether the rows need the segmented sort and its second buffer.
 bool needs_spare(const SearchOptions& options, const Counts& counts) {
-  return options.sort_rows && !fill_sorts(options, counts) && counts.longest > block_row;
+  return options.sort_rows && fill_kind(counts) == Fill::per_point && counts.longest > block_row;
 }
 
 /// Fills (and sorts) the rows of ids [first, last): their entries go to rows_out, which holds
@@ -267,19 +153,25 @@ point_id* fill_rows(const DeviceIndex& index, const SearchOptions& options, cons
   args.first = first;
   args.last = last;
   args.base = base;
-  const bool sorting = options.sort_rows && fill_sorts(options, counts);
-  if (per_cell_kernels()) {
-    if (!sorting) cell_pass<Pass::fill, wide_stage>(ix, options, args, stream);
-    else if (counts.widest <= Stage<2>::capacity) cell_pass<Pass::fill_sorted, 2>(ix, options, args, stream);
-    else cell_pass<Pass::fill_sorted, wide_stage>(ix, options, args, stream);
-  } else if (sorting) {
-    fused_pass(ix, options, args, counts.longest, stream);
-  } else {
-    point_pass<true>(ix, options, args, stream);
-  }
-  if (!options.sort_rows || sorting) return rows_out;
-  // Rows of up to 64 are cheaper with a thread per point and a sort after (measured, lattice
-  // n = 400, m = 1.5: 0.074 s that way, 0.166 s with a warp per point).
+  const bool sorted = options.sort_rows;
+  const unsigned blocks = blocks_for(static_cast<std::size_t>(ix.n));
+  const Fill kind = fill_kind(counts);
+  with_shape(options.metric, ix.grid.dims, options.half, [&](auto m, auto d, auto h) {
+    switch (kind) {
+      case Fill::short_rows:
+        if (sorted) fill_short_rows<HORIZON_SHAPE(m, d, h), true><<<blocks, block_size, 0, stream>>>(ix, args);
+        else fill_short_rows<HORIZON_SHAPE(m, d, h), false><<<blocks, block_size, 0, stream>>>(ix, args);
+        return check_launch("fill_short_rows");
+      case Fill::per_cell:
+        if (!sorted) return launch_cell_fill<false, wide_stage, HORIZON_SHAPE(m, d, h)>(ix, args, stream);
+        if (counts.widest <= Stage<2>::capacity) return launch_cell_fill<true, 2, HORIZON_SHAPE(m, d, h)>(ix, args, stream);
+        return launch_cell_fill<true, wide_stage, HORIZON_SHAPE(m, d, h)>(ix, args, stream);
+      case Fill::per_point:
+        fill_families<HORIZON_SHAPE(m, d, h)><<<blocks, block_size, 0, stream>>>(ix, args);
+        return check_launch("fill_families");
+    }
+  });
+  if (!sorted || kind != Fill::per_point) return rows_out;
   const std::int64_t rows = last - first;
   const std::int64_t* offsets = counts.offsets.get();
   if (counts.longest <= block_row) {
@@ -296,6 +188,8 @@ point_id* fill_rows(const DeviceIndex& index, const SearchOptions& options, cons
                                                         begins, begins + 1, stream));
   return keys.Current();
 }
+
+#undef HORIZON_SHAPE
 
 /// GPU memory a search can still take: free on the device plus what horizon's pool holds unused.
 std::size_t available_device_bytes(const MemoryMeter& meter) {

@@ -1,0 +1,112 @@
+#pragma once
+// Included by search.cu only (one translation unit): definitions in an anonymous namespace.
+// The per-point build kernels: a thread per point in sorted order (so a warp's points share
+// most of their candidates, read through L1), walking the stencil's (2k+1)^2 runs of 2k+1
+// cells. The count pass also reports the widest stencil, which decides the fill kernel.
+// Rows of up to 32 are filled here: each thread stages its row in shared memory, sorts it
+// there, and the warp stores the 32 rows one after another as coalesced pieces. Measured
+// (Nsight Compute, H100, lattice n = 200, m = 1.5): the fill storing straight to the list
+// took 2.4 ms and a thread-per-row sort after it 3.1 ms.
+#include <climits>
+
+#include "device_index.cuh"
+#include "horizon/metric.hpp"
+#include "launch.cuh"
+
+namespace horizon::detail {
+namespace {
+
+constexpr int staged_row = 32;  // longest row the short-row fill takes
+
+/// Calls emit(other) for each neighbour of the point at sorted position p, in stencil order;
+/// returns the stencil's size.
+template <Metric M, int D, bool Half, typename Emit>
+__device__ std::int64_t walk_stencil(const DeviceIndexView& ix, std::int64_t p, point_id self, double threshold,
+                                     Emit emit) {
+  const double xi = ix.x[p], yi = ix.y[p], zi = ix.z[p];
+  const std::int64_t cx = ix.grid.cell_of(xi, 0), cy = ix.grid.cell_of(yi, 1);
+  const std::int64_t cz = D == 3 ? ix.grid.cell_of(zi, 2) : 0;
+  const int k = ix.grid.k, reach_z = D == 3 ? k : 0;
+  std::int64_t stencil = 0;
+  for (int dz = -reach_z; dz <= reach_z; ++dz)
+    for (int dy = -k; dy <= k; ++dy) {
+      std::int64_t begin, end;
+      ix.row(cx, cy + dy, cz + dz, begin, end);
+      stencil += end - begin;
+      for (std::int64_t q = begin; q < end; ++q) {
+        const double d = metric_accumulate<M>(xi - ix.x[q], yi - ix.y[q], D == 3 ? zi - ix.z[q] : 0.0);
+        const point_id other = ix.order[q];
+        if (d < threshold && (Half ? other > self : q != p)) emit(other);
+      }
+    }
+  return stencil;
+}
+
+/// Count pass: counts[id] = |family| of every point, and the widest stencil of the queries.
+template <Metric M, int D, bool Half>
+__global__ void __launch_bounds__(block_size) count_families(DeviceIndexView ix, PassArgs a) {
+  __shared__ unsigned long long widest;
+  if (threadIdx.x == 0) widest = 0;
+  __syncthreads();
+  const std::int64_t p = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
+  if (p < ix.n) {
+    const point_id self = ix.order[p];
+    std::int64_t found = 0;
+    if (self < ix.queries) {
+      const std::int64_t stencil = walk_stencil<M, D, Half>(ix, p, self, a.threshold, [&](point_id) { ++found; });
+      atomicMax(&widest, static_cast<unsigned long long>(stencil));
+    }
+    a.counts[self] = found;
+  }
+  __syncthreads();
+  if (threadIdx.x == 0) atomicMax(a.widest, widest);
+}
+
+/// Fill pass for any row length: each thread stores its row straight into the list.
+template <Metric M, int D, bool Half>
+__global__ void fill_families(DeviceIndexView ix, PassArgs a) {
+  const std::int64_t p = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
+  if (p >= ix.n) return;
+  const point_id self = ix.order[p];
+  if (self >= ix.queries || self < a.first || self >= a.last) return;
+  point_id* row = a.out + (a.offsets[self] - a.base);
+  std::int64_t found = 0;
+  walk_stencil<M, D, Half>(ix, p, self, a.threshold, [&](point_id other) { row[found++] = other; });
+}
+
+/// Fill pass for rows of up to staged_row: rows staged in shared memory (column `lane` of the
+/// warp's tile, padded so that both the per-thread and the per-row accesses avoid bank
+/// conflicts), sorted there by insertion when Sorted, stored by the warp row after row.
+template <Metric M, int D, bool Half, bool Sorted>
+__global__ void __launch_bounds__(block_size) fill_short_rows(DeviceIndexView ix, PassArgs a) {
+  constexpr int pitch = staged_row + 1;
+  __shared__ point_id tile[block_size / 32][staged_row * pitch];
+  const int lane = threadIdx.x % 32;
+  point_id* rows = tile[threadIdx.x / 32];
+  const std::int64_t p = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
+  int found = 0;
+  point_id self = 0;
+  if (p < ix.n) {
+    self = ix.order[p];
+    if (self < ix.queries && self >= a.first && self < a.last) {
+      walk_stencil<M, D, Half>(ix, p, self, a.threshold, [&](point_id other) { rows[found++ * pitch + lane] = other; });
+      if (Sorted)
+        for (int i = 1; i < found; ++i) {
+          const point_id value = rows[i * pitch + lane];
+          int j = i;
+          for (; j > 0 && rows[(j - 1) * pitch + lane] > value; --j) rows[j * pitch + lane] = rows[(j - 1) * pitch + lane];
+          rows[j * pitch + lane] = value;
+        }
+    }
+  }
+  __syncwarp();
+  const std::int64_t start = found > 0 ? a.offsets[self] - a.base : 0;
+  for (int owner = 0; owner < 32; ++owner) {
+    const int length = __shfl_sync(0xffffffffu, found, owner);
+    const std::int64_t at = __shfl_sync(0xffffffffu, start, owner);
+    if (lane < length) a.out[at + lane] = rows[lane * pitch + owner];
+  }
+}
+
+}  // namespace
+}  // namespace horizon::detail
