@@ -3,8 +3,8 @@
 // The per-point build kernels: a thread per point in sorted order (so a warp's points share
 // most of their candidates, read through L1), walking the stencil's (2k+1)^2 runs of 2k+1
 // cells. The count pass also reports the widest stencil, which decides the fill kernel.
-// Rows of up to 32 are filled here: each thread stages its row in shared memory, sorts it
-// there, and the warp stores the 32 rows one after another as coalesced pieces. Measured
+// Rows of up to 64 are filled here: each thread stages its row in shared memory, sorts it
+// there, and the warp stores its 32 rows one after another as coalesced pieces. Measured
 // (Nsight Compute, H100, lattice n = 200, m = 1.5): the fill storing straight to the list
 // took 2.4 ms and a thread-per-row sort after it 3.1 ms.
 #include <climits>
@@ -16,7 +16,8 @@
 namespace horizon::detail {
 namespace {
 
-constexpr int staged_row = 32;  // longest row the short-row fill takes
+constexpr int staged_row = 64;    // longest row the short-row fill takes
+constexpr int staged_block = 128;  // its block: 4 warps of 32 rows of 64 (+1) ids, 33 KB
 
 /// Calls emit(other) for each neighbour of the point at sorted position p, in stencil order;
 /// returns the stencil's size.
@@ -78,9 +79,9 @@ __global__ void fill_families(DeviceIndexView ix, PassArgs a) {
 /// warp's tile, padded so that both the per-thread and the per-row accesses avoid bank
 /// conflicts), sorted there by insertion when Sorted, stored by the warp row after row.
 template <Metric M, int D, bool Half, bool Sorted>
-__global__ void __launch_bounds__(block_size) fill_short_rows(DeviceIndexView ix, PassArgs a) {
-  constexpr int pitch = staged_row + 1;
-  __shared__ point_id tile[block_size / 32][staged_row * pitch];
+__global__ void __launch_bounds__(staged_block) fill_short_rows(DeviceIndexView ix, PassArgs a) {
+  constexpr int pitch = 33;  // rows[j * pitch + lane]: 32 lanes, +1 against bank conflicts
+  __shared__ point_id tile[staged_block / 32][staged_row * pitch];
   const int lane = threadIdx.x % 32;
   point_id* rows = tile[threadIdx.x / 32];
   const std::int64_t p = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
@@ -104,7 +105,7 @@ __global__ void __launch_bounds__(block_size) fill_short_rows(DeviceIndexView ix
   for (int owner = 0; owner < 32; ++owner) {
     const int length = __shfl_sync(0xffffffffu, found, owner);
     const std::int64_t at = __shfl_sync(0xffffffffu, start, owner);
-    if (lane < length) a.out[at + lane] = rows[lane * pitch + owner];
+    for (int j = lane; j < length; j += 32) a.out[at + j] = rows[j * pitch + owner];
   }
 }
 
