@@ -164,14 +164,13 @@ point_id* fill_rows(const DeviceIndex& index, const SearchOptions& options, cons
   args.base = base;
   const bool sorted = options.sort_rows;
   const unsigned blocks = blocks_for(static_cast<std::size_t>(ix.n));
-  const auto staged_blocks = static_cast<unsigned>((ix.n + staged_block - 1) / staged_block);
   const Fill kind = fill_kind(counts);
   with_shape(options.metric, ix.grid.dims, options.half, [&](auto m, auto d, auto h) {
     switch (kind) {
       case Fill::short_rows:
-        if (sorted) fill_short_rows<HORIZON_SHAPE(m, d, h), true><<<staged_blocks, staged_block, 0, stream>>>(ix, args);
-        else fill_short_rows<HORIZON_SHAPE(m, d, h), false><<<staged_blocks, staged_block, 0, stream>>>(ix, args);
-        return check_launch("fill_short_rows");
+        if (counts.longest <= 32) launch_short_rows<HORIZON_SHAPE(m, d, h), 32>(ix, args, sorted, stream);
+        else launch_short_rows<HORIZON_SHAPE(m, d, h), staged_row>(ix, args, sorted, stream);
+        return;
       case Fill::per_cell:
         if (!sorted) return launch_cell_fill<false, wide_stage, HORIZON_SHAPE(m, d, h)>(ix, args, stream);
         if (counts.widest <= Stage<2>::capacity) return launch_cell_fill<true, 2, HORIZON_SHAPE(m, d, h)>(ix, args, stream);
