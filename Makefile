@@ -4,7 +4,9 @@
 BUILD ?= build
 JOBS ?= $(shell nproc)
 PACKAGES = build-essential cmake libgtest-dev libbenchmark-dev libcli11-dev libfmt-dev \
-           nlohmann-json3-dev libnanoflann-dev libhwy-dev libopenmpi-dev openmpi-bin
+           nlohmann-json3-dev libnanoflann-dev libhwy-dev libopenmpi-dev openmpi-bin \
+           python3-dev python3-pybind11 pybind11-dev python3-numpy python3-scipy python3-pytest \
+           python3-venv python3-pip python3-matplotlib
 
 .PHONY: deps build run test bench clean
 

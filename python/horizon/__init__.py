@@ -1,0 +1,144 @@
+"""horizon: exact all-pairs fixed-radius neighbour lists (cell lists) for 2-D and 3-D points.
+
+    import horizon
+    points = horizon.lattice(100)                 # (10**6, 3) float64
+    nl = horizon.search(points, 0.3015)           # every pair closer than the horizon
+    nl.offsets, nl.indices                        # CSR: row i is indices[offsets[i]:offsets[i+1]]
+    nl.pairs()                                    # (M, 2) int64, i < j, like cKDTree.query_pairs
+    nl.to_scipy()                                 # scipy.sparse.csr_matrix of the pattern
+
+The list is exact (the same bits from every backend) and rows are sorted by id unless
+sort_rows=False. Errors raise ValueError (bad input) or MemoryError with horizon's message.
+"""
+import os
+
+import numpy as np
+
+from . import _horizon
+
+__all__ = ["search", "NeighborList", "load", "lattice", "random_cloud", "clustered_cloud", "backend_available"]
+
+
+class NeighborList:
+    """A neighbour list in CSR form: row i (the family of point i) is
+    indices[offsets[i]:offsets[i + 1]]. offsets is int64 (N + 1), indices int32; when the list
+    comes from search() both are read-only views of horizon's buffers (no copy)."""
+
+    def __init__(self, offsets, indices, half=False):
+        self.offsets = offsets
+        self.indices = indices
+        self.half = bool(half)
+
+    def __len__(self):
+        return len(self.offsets) - 1
+
+    def __repr__(self):
+        kind = "half" if self.half else "full"
+        return f"<horizon.NeighborList: {len(self)} points, {self.total} entries ({kind})>"
+
+    @property
+    def total(self):
+        """Number of entries (each pair twice in a full list, once in a half list)."""
+        return int(self.offsets[-1])
+
+    def row(self, i):
+        """The family of point i (a view)."""
+        if not -len(self) <= i < len(self):
+            raise IndexError(f"point {i} out of range for {len(self)} points")
+        i %= len(self)
+        return self.indices[self.offsets[i]:self.offsets[i + 1]]
+
+    def pairs(self):
+        """Each pair once, as an (M, 2) int64 array of (i, j) with i < j, sorted."""
+        rows = np.repeat(np.arange(len(self), dtype=np.int64), np.diff(self.offsets))
+        columns = self.indices.astype(np.int64)
+        keep = rows < columns
+        pairs = np.stack([rows[keep], columns[keep]], axis=1)
+        if len(pairs) > 1 and not np.all(np.diff(pairs[:, 0] * len(self) + pairs[:, 1]) > 0):
+            pairs = pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))]  # rows were not sorted
+        return pairs
+
+    def to_scipy(self):
+        """The pattern as a scipy.sparse.csr_matrix of ones (N x N)."""
+        from scipy.sparse import csr_matrix
+
+        n = len(self)
+        return csr_matrix((np.ones(self.total, dtype=np.int8), self.indices, self.offsets), shape=(n, n))
+
+    def save(self, prefix):
+        """Writes PREFIX.offsets.npy and PREFIX.indices.npy, as the CLI does: each written to a
+        temporary name and renamed, so a failure never leaves a file that looks complete."""
+        for suffix, array in ((".offsets.npy", self.offsets), (".indices.npy", self.indices)):
+            target = os.fspath(prefix) + suffix
+            temporary = target + ".tmp-" + str(os.getpid())
+            try:
+                with open(temporary, "wb") as out:
+                    np.save(out, np.ascontiguousarray(array))
+                os.replace(temporary, target)
+            except BaseException:
+                if os.path.exists(temporary):
+                    os.remove(temporary)
+                raise
+
+
+def search(points, horizon, *, backend="auto", metric="l2", half=False, sort_rows=True, threads=0, device=0,
+           cells_per_horizon=1):
+    """The neighbour list of `points` ((N, 2) or (N, 3) array-like, float64 or float32, any
+    order): row i holds every j != i with distance(i, j) < horizon.
+
+    backend: "auto" (a GPU if there is one, else all cores), "serial", "openmp" or "cuda";
+    metric: "l2", "l1" or "linf"; half: keep each pair once, in the row of the smaller id;
+    sort_rows: rows ascending by id (False is faster); threads: openmp threads (0: all);
+    device: CUDA device; cells_per_horizon: cell side horizon / k (1-3).
+    """
+    array = np.asarray(points)
+    if array.ndim != 2 or array.shape[1] not in (2, 3):
+        raise ValueError(f"points must be an (N, 2) or (N, 3) array, not shape {array.shape}")
+    if array.dtype not in (np.float64, np.float32):
+        if not (np.issubdtype(array.dtype, np.floating) or np.issubdtype(array.dtype, np.integer)):
+            raise ValueError(f"points must be numbers, not {array.dtype}")
+        array = array.astype(np.float64)
+    array = np.ascontiguousarray(array)  # no copy when already C-ordered; AoS is what horizon reads
+    owned = _horizon.search(array, float(horizon), metric, bool(half), bool(sort_rows), backend, int(threads),
+                            int(device), int(cells_per_horizon))
+    offsets, indices = owned.offsets, owned.indices
+    offsets.flags.writeable = False
+    indices.flags.writeable = False
+    return NeighborList(offsets, indices, half)
+
+
+def load(prefix, half=False):
+    """The list a search saved (NeighborList.save or `horizon search --out PREFIX`)."""
+    prefix = os.fspath(prefix)
+    offsets_path, indices_path = prefix + ".offsets.npy", prefix + ".indices.npy"
+    offsets = np.load(offsets_path, allow_pickle=False)
+    indices = np.load(indices_path, allow_pickle=False)
+    if offsets.ndim != 1 or offsets.dtype != np.int64 or len(offsets) == 0:
+        raise ValueError(f"{offsets_path}: expected a 1-D int64 array of N + 1 offsets")
+    if indices.ndim != 1 or indices.dtype not in (np.int32, np.int64):
+        raise ValueError(f"{indices_path}: expected a 1-D int32 or int64 array")
+    if offsets[0] != 0 or offsets[-1] != len(indices) or np.any(np.diff(offsets) < 0):
+        raise ValueError(f"{offsets_path}: offsets must rise from 0 to {len(indices)}, the entries of {indices_path}")
+    if len(indices) and (indices.min() < 0 or indices.max() >= len(offsets) - 1):
+        raise ValueError(f"{indices_path}: an id lies outside 0 .. {len(offsets) - 2}")
+    return NeighborList(offsets, indices.astype(np.int32, copy=False), half)
+
+
+def lattice(n, dims=3, side=10.0):
+    """n^dims points on a regular lattice of spacing side / n (the benchmark problems)."""
+    return _horizon.lattice(int(n), int(dims), float(side))
+
+
+def random_cloud(count, dims=3, seed=1, side=10.0):
+    """count points uniform in [0, side)^dims."""
+    return _horizon.random_cloud(int(count), int(dims), int(seed), float(side))
+
+
+def clustered_cloud(count, clusters=64, sigma=1.0, dims=3, seed=1, side=10.0):
+    """count points in `clusters` Gaussian blobs of standard deviation sigma."""
+    return _horizon.clustered_cloud(int(count), int(clusters), float(sigma), int(dims), int(seed), float(side))
+
+
+def backend_available(name):
+    """Whether a backend ("serial", "openmp", "cuda") is built and has hardware here."""
+    return _horizon.backend_available(name)

@@ -1,0 +1,98 @@
+// The compiled half of the Python package (horizon/_horizon): the search on NumPy arrays, with
+// the GIL released, and the list's buffers handed to NumPy without a copy (each array keeps the
+// list alive). horizon::Error becomes ValueError, running out of memory MemoryError, with the
+// CLI's message.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <cstring>
+#include <new>
+#include <string>
+
+#include "horizon/cuda.hpp"
+#include "horizon/generate.hpp"
+#include "horizon/search.hpp"
+
+namespace py = pybind11;
+
+namespace {
+
+/// A list owned by Python.
+struct OwnedList {
+  horizon::NeighborList list;
+};
+
+template <typename T>
+py::array view(const T* data, std::size_t count, py::handle owner) {
+  return py::array(py::dtype::of<T>(), {count}, {sizeof(T)}, data, owner);
+}
+
+/// points: a C-contiguous (N, 2|3) float64 or float32 array (the Python layer makes it so).
+OwnedList search(py::array points, double horizon, const std::string& metric, bool half, bool sort_rows,
+                 const std::string& backend, int threads, int device, int cells_per_horizon) {
+  const auto rows = static_cast<std::size_t>(points.shape(0));
+  const int dims = static_cast<int>(points.shape(1));
+  const horizon::PointView view =
+      points.dtype().is(py::dtype::of<float>())
+          ? horizon::PointView(static_cast<const float*>(points.data()), rows, dims)
+          : horizon::PointView(static_cast<const double*>(points.data()), rows, dims);
+  horizon::SearchOptions options;
+  options.horizon = horizon;
+  options.metric = horizon::parse_metric(metric);
+  options.half = half;
+  options.sort_rows = sort_rows;
+  options.backend = horizon::parse_backend(backend);
+  options.threads = threads;
+  options.device = device;
+  options.cells_per_horizon = cells_per_horizon;
+  py::gil_scoped_release unlocked;
+  return OwnedList{horizon::search(view, options)};
+}
+
+py::array to_array(const horizon::PointSet& points) {
+  py::array_t<double> out({static_cast<py::ssize_t>(points.size()), static_cast<py::ssize_t>(points.dims)});
+  std::memcpy(out.mutable_data(), points.xyz.data(), points.xyz.size() * sizeof(double));
+  return out;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_horizon, m) {
+  m.doc() = "horizon's compiled core; use the horizon package";
+  py::register_exception_translator([](std::exception_ptr error) {
+    try {
+      if (error) std::rethrow_exception(error);
+    } catch (const horizon::DeviceOutOfMemory& e) {
+      PyErr_SetString(PyExc_MemoryError, e.what());
+    } catch (const horizon::Error& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const std::bad_alloc&) {
+      PyErr_SetString(PyExc_MemoryError, "out of memory (the neighbour list does not fit)");
+    }
+  });
+
+  py::class_<OwnedList>(m, "OwnedList")
+      .def_property_readonly("offsets", [](py::object self) {
+        const auto& list = self.cast<const OwnedList&>().list;
+        return view(list.offsets().data(), list.offsets().size(), self);
+      })
+      .def_property_readonly("indices", [](py::object self) {
+        const auto& list = self.cast<const OwnedList&>().list;
+        return view(list.indices().data(), list.indices().size(), self);
+      });
+
+  m.def("search", &search, py::arg("points"), py::arg("horizon"), py::arg("metric"), py::arg("half"),
+        py::arg("sort_rows"), py::arg("backend"), py::arg("threads"), py::arg("device"),
+        py::arg("cells_per_horizon"));
+  m.def("lattice", [](int n, int dims, double side) { return to_array(horizon::lattice(n, dims, side)); });
+  m.def("random_cloud", [](std::size_t count, int dims, std::uint64_t seed, double side) {
+    return to_array(horizon::random_cloud(count, dims, seed, side));
+  });
+  m.def("clustered_cloud", [](std::size_t count, int clusters, double sigma, int dims, std::uint64_t seed,
+                              double side) {
+    return to_array(horizon::clustered_cloud(count, clusters, sigma, dims, seed, side));
+  });
+  m.def("backend_available", [](const std::string& name) {
+    return horizon::backend_available(horizon::parse_backend(name));
+  });
+}

@@ -1,0 +1,154 @@
+"""The Python package against a NumPy brute force, scipy, and the CLI's files."""
+import os
+import subprocess
+import threading
+
+import numpy as np
+import pytest
+
+import horizon
+
+
+def brute_force(points, h, metric="l2", half=False):
+    """Rows of the list by the definition, with horizon's arithmetic ((dx*dx + dy*dy) + dz*dz < h*h)."""
+    p = np.asarray(points, dtype=np.float64)
+    d = p[:, None, :] - p[None, :, :]
+    if metric == "l2":
+        acc = d[..., 0] * d[..., 0] + d[..., 1] * d[..., 1]
+        if p.shape[1] == 3:
+            acc = acc + d[..., 2] * d[..., 2]
+        near = acc < h * h
+    elif metric == "l1":
+        near = np.abs(d).sum(axis=2) < h
+    else:
+        near = np.abs(d).max(axis=2) < h
+    np.fill_diagonal(near, False)
+    if half:
+        near = np.triu(near)
+    return [np.flatnonzero(row) for row in near]
+
+
+def rows_of(nl):
+    return [nl.row(i) for i in range(len(nl))]
+
+
+@pytest.mark.parametrize("dims", [2, 3])
+@pytest.mark.parametrize("metric", ["l2", "l1", "linf"])
+@pytest.mark.parametrize("half", [False, True])
+def test_matches_brute_force(dims, metric, half):
+    points = horizon.random_cloud(1500, dims=dims, seed=3)
+    h = 0.9 if dims == 3 else 0.4
+    nl = horizon.search(points, h, metric=metric, half=half)
+    expected = brute_force(points, h, metric, half)
+    assert len(nl) == len(points)
+    assert nl.total == sum(len(r) for r in expected)
+    for got, want in zip(rows_of(nl), expected):
+        np.testing.assert_array_equal(got, want)
+
+
+@pytest.mark.parametrize("backend", ["serial", "openmp", "cuda"])
+def test_every_backend_gives_the_same_list(backend):
+    if not horizon.backend_available(backend):
+        pytest.skip(f"{backend} is not available here")
+    points = horizon.clustered_cloud(20000, clusters=8, sigma=0.5, seed=2)
+    reference = horizon.search(points, 0.2, backend="serial")
+    nl = horizon.search(points, 0.2, backend=backend)
+    np.testing.assert_array_equal(nl.offsets, reference.offsets)
+    np.testing.assert_array_equal(nl.indices, reference.indices)
+
+
+def test_pairs_and_scipy_agree_with_ckdtree():
+    from scipy.spatial import cKDTree
+
+    points = horizon.random_cloud(5000, seed=5)
+    nl = horizon.search(points, 0.5)
+    expected = cKDTree(points).query_pairs(0.5, output_type="ndarray")  # no pair lies at exactly 0.5
+    expected = expected[np.lexsort((expected[:, 1], expected[:, 0]))]
+    np.testing.assert_array_equal(nl.pairs(), expected)
+    matrix = nl.to_scipy()
+    assert matrix.shape == (5000, 5000) and matrix.nnz == nl.total
+    assert (matrix != matrix.T).nnz == 0
+
+
+def test_unsorted_rows_give_the_same_pairs():
+    points = horizon.random_cloud(4000, seed=6)
+    np.testing.assert_array_equal(horizon.search(points, 0.6, sort_rows=False).pairs(), horizon.search(points, 0.6).pairs())
+
+
+def test_input_layouts_and_types():
+    points = horizon.random_cloud(2000, seed=7)
+    reference = horizon.search(points, 0.8)
+    single = points.astype(np.float32)
+    promoted = horizon.search(single.astype(np.float64), 0.8)
+    np.testing.assert_array_equal(horizon.search(single, 0.8).indices, promoted.indices)
+    np.testing.assert_array_equal(horizon.search(np.asfortranarray(points), 0.8).indices, reference.indices)
+    np.testing.assert_array_equal(horizon.search(points.tolist(), 0.8).indices, reference.indices)
+    lattice = horizon.lattice(6)
+    np.testing.assert_array_equal(horizon.search((lattice * 2).astype(np.int64), 2.5).indices,
+                                  horizon.search(lattice * 2, 2.5).indices)
+
+
+def test_arrays_view_the_list_without_a_copy_and_keep_it_alive():
+    nl = horizon.search(horizon.lattice(10), 1.5)
+    offsets, indices = nl.offsets, nl.indices
+    assert offsets.dtype == np.int64 and indices.dtype == np.int32
+    assert offsets.base is not None and indices.base is not None
+    assert not offsets.flags.writeable and not indices.flags.writeable
+    del nl
+    assert offsets[-1] == len(indices) and indices.max() < 1000
+
+
+def test_clear_errors():
+    points = horizon.random_cloud(100, seed=1)
+    points[42, 1] = np.nan
+    with pytest.raises(ValueError, match="42"):
+        horizon.search(points, 0.5)
+    with pytest.raises(ValueError, match="shape"):
+        horizon.search(np.zeros((10, 4)), 0.5)
+    with pytest.raises(ValueError, match="horizon"):
+        horizon.search(horizon.random_cloud(10), -1.0)
+    with pytest.raises(ValueError, match="backend"):
+        horizon.search(horizon.random_cloud(10), 0.5, backend="quantum")
+    with pytest.raises(ValueError, match="metric"):
+        horizon.search(horizon.random_cloud(10), 0.5, metric="cosine")
+
+
+def test_the_gil_is_released_during_a_search():
+    points = horizon.random_cloud(300000, seed=8)
+    ticks = []
+    done = threading.Event()
+
+    def count():
+        while not done.is_set():
+            ticks.append(1)
+
+    counter = threading.Thread(target=count)
+    counter.start()
+    horizon.search(points, 0.3, backend="serial")
+    done.set()
+    counter.join()
+    assert len(ticks) > 100  # the other thread ran while the search did
+
+
+def test_save_and_load(tmp_path):
+    nl = horizon.search(horizon.random_cloud(3000, seed=9), 0.7, half=True)
+    nl.save(tmp_path / "list")
+    back = horizon.load(tmp_path / "list", half=True)
+    np.testing.assert_array_equal(back.offsets, nl.offsets)
+    np.testing.assert_array_equal(back.indices, nl.indices)
+    assert sorted(os.listdir(tmp_path)) == ["list.indices.npy", "list.offsets.npy"]
+    np.save(tmp_path / "list.offsets.npy", nl.offsets * 2)  # offsets that do not match the indices
+    with pytest.raises(ValueError, match="offsets.npy"):
+        horizon.load(tmp_path / "list")
+
+
+def test_loads_what_the_cli_wrote(tmp_path):
+    cli = os.environ.get("HORIZON_CLI")
+    if not cli:
+        pytest.skip("HORIZON_CLI not set")
+    subprocess.run([cli, "search", "lattice:12", "--horizon", "2.0", "--out", str(tmp_path / "cli"), "--quiet"],
+                   check=True)
+    nl = horizon.load(tmp_path / "cli")
+    reference = horizon.search(horizon.lattice(12), 2.0)
+    np.testing.assert_array_equal(nl.offsets, reference.offsets)
+    np.testing.assert_array_equal(nl.indices, reference.indices)
