@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# pip install --no-build-isolation . into a fresh venv made as Debian wants (--system-site-packages),
+# then import the installed package from elsewhere and search. Usage: pip_install_test.sh SOURCE WORK
+set -euo pipefail
+source_dir=$1 work=$2
+rm -rf "$work" && mkdir -p "$work"
+/usr/bin/python3 -m venv --system-site-packages "$work/venv"
+HORIZON_CMAKE_ARGS="-DHORIZON_CUDA=off" "$work/venv/bin/pip" install --no-build-isolation --no-deps -q "$source_dir"
+cd "$work"
+"$work/venv/bin/python" - <<'PY'
+import horizon
+assert "site-packages" in horizon.__file__, horizon.__file__
+nl = horizon.search(horizon.lattice(30), 0.5)
+assert nl.total == 459360, nl.total  # 6 face neighbours x 29*30*30 + 12 edge neighbours x 29*29*30
+print("installed:", horizon.__file__, nl)
+PY
