@@ -8,7 +8,7 @@ for deb in .deps/*.deb; do dpkg -x "$deb" /opt/deps; done
 export LD_LIBRARY_PATH=/opt/deps/usr/lib/x86_64-linux-gnu:${LD_LIBRARY_PATH:-}
 export BUILD=${BUILD:-build-gpu}
 cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DHORIZON_CUDA=on \
-  -DCMAKE_PREFIX_PATH=/opt/deps/usr -DCMAKE_CUDA_ARCHITECTURES=90 > "$BUILD.configure.log" 2>&1 \
+  -DCMAKE_PREFIX_PATH=/opt/deps/usr -DCMAKE_CUDA_ARCHITECTURES=90 ${CMAKE_ARGS:-} > "$BUILD.configure.log" 2>&1 \
   || { cat "$BUILD.configure.log"; return 1 2>/dev/null || exit 1; }
 cmake --build "$BUILD" -j "$(nproc)" 2>&1 | grep -E "error|warning: unused" || true
 set +e

@@ -63,6 +63,10 @@ DeviceNeighborList search_device(const double* xyz, std::size_t count, int dims,
 /// the device). Call it when other code needs that memory.
 void cuda_release_cached_memory(int device = 0);
 
+/// Makes the device that holds `pointer` (device memory) current and returns its number; throws
+/// horizon::Error naming the pointer when it is not CUDA device memory.
+int cuda_use_device_of(const void* pointer);
+
 /// Name of a CUDA device, or "" when there is none.
 std::string cuda_device_name(int device);
 

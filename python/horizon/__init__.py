@@ -16,7 +16,7 @@ import numpy as np
 
 from . import _horizon
 
-__all__ = ["search", "NeighborList", "load", "lattice", "random_cloud", "clustered_cloud", "backend_available"]
+__all__ = ["search", "NeighborList", "DeviceNeighborList", "load", "lattice", "random_cloud", "clustered_cloud", "backend_available"]
 
 
 class NeighborList:
@@ -81,6 +81,76 @@ class NeighborList:
                 raise
 
 
+class _CudaArray:
+    """A 1-D array in GPU memory, exported through __cuda_array_interface__ (version 3) so that
+    torch.as_tensor(a, device="cuda") and cupy.asarray(a) take it without a copy; it keeps the
+    list that owns the memory alive."""
+
+    def __init__(self, owner, pointer, length, typestr):
+        self._owner = owner
+        self.__cuda_array_interface__ = {
+            "shape": (length,),
+            "typestr": typestr,
+            "data": (pointer, True),
+            "strides": None,
+            "version": 3,
+            "stream": owner.stream or 1,  # the stream it was built on; 1: the legacy default stream
+        }
+
+    def __len__(self):
+        return self.__cuda_array_interface__["shape"][0]
+
+
+class DeviceNeighborList:
+    """A neighbour list left in GPU memory (search() on a CUDA array): offsets (int64, N + 1) and
+    indices (int32) export __cuda_array_interface__; to_host() copies it into a NeighborList.
+    The memory goes back to horizon's pool when this object and every array taken from it are
+    gone."""
+
+    def __init__(self, owned, half):
+        self._owned = owned
+        self.half = bool(half)
+        self.offsets = _CudaArray(owned, owned.offsets_pointer, owned.points + 1, "<i8")
+        self.indices = _CudaArray(owned, owned.indices_pointer, owned.total, "<i4")
+
+    def __len__(self):
+        return self._owned.points
+
+    def __repr__(self):
+        kind = "half" if self.half else "full"
+        return f"<horizon.DeviceNeighborList: {len(self)} points, {self.total} entries ({kind}), GPU {self.device}>"
+
+    @property
+    def total(self):
+        return int(self._owned.total)
+
+    @property
+    def device(self):
+        return self._owned.device
+
+    def to_host(self):
+        owned = self._owned.to_host()
+        return NeighborList(owned.offsets, owned.indices, self.half)
+
+
+def _search_on_gpu(points, horizon, metric, half, sort_rows, cells_per_horizon):
+    interface = points.__cuda_array_interface__
+    shape, typestr = tuple(interface["shape"]), interface["typestr"]
+    if len(shape) != 2 or shape[1] not in (2, 3):
+        raise ValueError(f"points must be an (N, 2) or (N, 3) array, not shape {shape}")
+    if typestr != "<f8":
+        raise ValueError(f"GPU points must be float64 ('<f8'), not '{typestr}' (convert them on the GPU first, "
+                         "e.g. x.double() or x.astype(cupy.float64))")
+    strides = interface.get("strides")
+    if strides is not None and tuple(strides) != (8 * shape[1], 8):
+        raise ValueError(f"GPU points must be C-contiguous (strides {(8 * shape[1], 8)}, not {tuple(strides)}); "
+                         "e.g. x.contiguous() or cupy.ascontiguousarray(x)")
+    stream = interface.get("stream") or 0
+    owned = _horizon.search_device(interface["data"][0], shape[0], shape[1], stream, float(horizon), metric,
+                                   bool(half), bool(sort_rows), int(cells_per_horizon))
+    return DeviceNeighborList(owned, half)
+
+
 def search(points, horizon, *, backend="auto", metric="l2", half=False, sort_rows=True, threads=0, device=0,
            cells_per_horizon=1):
     """The neighbour list of `points` ((N, 2) or (N, 3) array-like, float64 or float32, any
@@ -90,7 +160,13 @@ def search(points, horizon, *, backend="auto", metric="l2", half=False, sort_row
     metric: "l2", "l1" or "linf"; half: keep each pair once, in the row of the smaller id;
     sort_rows: rows ascending by id (False is faster); threads: openmp threads (0: all);
     device: CUDA device; cells_per_horizon: cell side horizon / k (1-3).
+
+    A CUDA array (__cuda_array_interface__: CuPy, PyTorch; float64, C-contiguous) is searched
+    where it lies, on its GPU and stream, and gives a DeviceNeighborList (backend, threads and
+    device do not apply).
     """
+    if hasattr(points, "__cuda_array_interface__"):
+        return _search_on_gpu(points, horizon, metric, half, sort_rows, cells_per_horizon)
     array = np.asarray(points)
     if array.ndim != 2 or array.shape[1] not in (2, 3):
         raise ValueError(f"points must be an (N, 2) or (N, 3) array, not shape {array.shape}")

@@ -5,6 +5,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <cstdint>
 #include <cstring>
 #include <new>
 #include <string>
@@ -20,6 +21,15 @@ namespace {
 /// A list owned by Python.
 struct OwnedList {
   horizon::NeighborList list;
+};
+
+/// A list in GPU memory owned by Python, with the stream it was built on (the consumers'
+/// __cuda_array_interface__ names it).
+struct OwnedDeviceList {
+  horizon::DeviceNeighborList list;
+  std::uintptr_t stream;
+  int device;
+  bool half;
 };
 
 template <typename T>
@@ -47,6 +57,24 @@ OwnedList search(py::array points, double horizon, const std::string& metric, bo
   options.cells_per_horizon = cells_per_horizon;
   py::gil_scoped_release unlocked;
   return OwnedList{horizon::search(view, options)};
+}
+
+/// points: `count` x `dims` C-contiguous float64 in GPU memory at `pointer`; the list is built on
+/// `stream` (a CUDA stream handle, 0 for the default stream) of the device holding the points.
+OwnedDeviceList search_device(std::uintptr_t pointer, std::size_t count, int dims, std::uintptr_t stream,
+                              double horizon, const std::string& metric, bool half, bool sort_rows,
+                              int cells_per_horizon) {
+  const auto* xyz = reinterpret_cast<const double*>(pointer);
+  horizon::SearchOptions options;
+  options.horizon = horizon;
+  options.metric = horizon::parse_metric(metric);
+  options.half = half;
+  options.sort_rows = sort_rows;
+  options.cells_per_horizon = cells_per_horizon;
+  py::gil_scoped_release unlocked;
+  options.device = count ? horizon::cuda_use_device_of(xyz) : 0;
+  auto list = horizon::search_device(xyz, count, dims, options, reinterpret_cast<horizon::cuda_stream>(stream));
+  return OwnedDeviceList{std::move(list), stream, options.device, half};
 }
 
 py::array to_array(const horizon::PointSet& points) {
@@ -81,6 +109,20 @@ PYBIND11_MODULE(_horizon, m) {
         return view(list.indices().data(), list.indices().size(), self);
       });
 
+  py::class_<OwnedDeviceList>(m, "OwnedDeviceList")
+      .def_property_readonly("offsets_pointer", [](const OwnedDeviceList& l) { return reinterpret_cast<std::uintptr_t>(l.list.offsets()); })
+      .def_property_readonly("indices_pointer", [](const OwnedDeviceList& l) { return reinterpret_cast<std::uintptr_t>(l.list.indices()); })
+      .def_property_readonly("points", [](const OwnedDeviceList& l) { return l.list.size(); })
+      .def_property_readonly("total", [](const OwnedDeviceList& l) { return l.list.total(); })
+      .def_property_readonly("stream", [](const OwnedDeviceList& l) { return l.stream; })
+      .def_property_readonly("device", [](const OwnedDeviceList& l) { return l.device; })
+      .def("to_host", [](const OwnedDeviceList& l) {
+        py::gil_scoped_release unlocked;
+        return OwnedList{l.list.to_host(l.half)};
+      });
+
+  m.def("search_device", &search_device, py::arg("pointer"), py::arg("count"), py::arg("dims"), py::arg("stream"),
+        py::arg("horizon"), py::arg("metric"), py::arg("half"), py::arg("sort_rows"), py::arg("cells_per_horizon"));
   m.def("search", &search, py::arg("points"), py::arg("horizon"), py::arg("metric"), py::arg("half"),
         py::arg("sort_rows"), py::arg("backend"), py::arg("threads"), py::arg("device"),
         py::arg("cells_per_horizon"));

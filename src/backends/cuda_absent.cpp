@@ -24,6 +24,7 @@ DeviceNeighborList search_device(const double*, std::size_t, int, const SearchOp
   no_cuda();
 }
 void cuda_release_cached_memory(int) {}
+int cuda_use_device_of(const void*) { no_cuda(); }
 std::string cuda_device_name(int) { return ""; }
 
 }  // namespace horizon

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <sstream>
 #include <type_traits>
 
 #include "../backends.hpp"
@@ -362,6 +363,18 @@ void cuda_release_cached_memory(int device) {
   detail::select_device(device);
   HORIZON_CUDA_CHECK(cudaDeviceSynchronize());
   HORIZON_CUDA_CHECK(cudaMemPoolTrimTo(detail::device_pool(device), 0));
+}
+
+int cuda_use_device_of(const void* pointer) {
+  cudaPointerAttributes attributes{};
+  if (cudaPointerGetAttributes(&attributes, pointer) != cudaSuccess || (attributes.type != cudaMemoryTypeDevice && attributes.type != cudaMemoryTypeManaged)) {
+    cudaGetLastError();  // clear the error a host pointer leaves behind
+    std::ostringstream what;
+    what << "points at " << pointer << " are not in CUDA device memory";
+    throw Error(what.str());
+  }
+  HORIZON_CUDA_CHECK(cudaSetDevice(attributes.device));
+  return attributes.device;
 }
 
 std::string cuda_device_name(int device) {

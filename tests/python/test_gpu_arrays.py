@@ -1,0 +1,75 @@
+"""CUDA arrays in (PyTorch, CuPy: __cuda_array_interface__), a DeviceNeighborList out whose arrays
+those libraries take without a copy. Skips without a GPU or without either library."""
+import numpy as np
+import pytest
+
+import horizon
+
+if not horizon.backend_available("cuda"):
+    pytest.skip("no usable GPU", allow_module_level=True)
+
+libraries = []
+try:
+    import torch
+
+    libraries.append("torch")
+except ImportError:
+    pass
+try:
+    import cupy
+
+    libraries.append("cupy")
+except ImportError:
+    pass
+
+
+def to_gpu(library, array):
+    return torch.from_numpy(array).cuda() if library == "torch" else cupy.asarray(array)
+
+
+def to_numpy(library, cuda_array):
+    if library == "torch":
+        return torch.as_tensor(cuda_array, device="cuda").cpu().numpy()
+    return cupy.asnumpy(cupy.asarray(cuda_array))
+
+
+@pytest.mark.parametrize("library", libraries)
+@pytest.mark.parametrize("dims,h", [(3, 0.5), (3, 1.0), (2, 0.1)])
+@pytest.mark.parametrize("half", [False, True])
+def test_device_list_equals_host_list(library, dims, h, half):
+    points = horizon.random_cloud(50000, dims=dims, seed=11)
+    reference = horizon.search(points, h, half=half, backend="serial")
+    nl = horizon.search(to_gpu(library, points), h, half=half)
+    assert isinstance(nl, horizon.DeviceNeighborList) and len(nl) == len(points) and nl.total == reference.total
+    np.testing.assert_array_equal(to_numpy(library, nl.offsets), reference.offsets)
+    np.testing.assert_array_equal(to_numpy(library, nl.indices), reference.indices)
+    host = nl.to_host()
+    np.testing.assert_array_equal(host.indices, reference.indices)
+
+
+@pytest.mark.parametrize("library", libraries)
+def test_arrays_outlive_the_list_object(library):
+    points = horizon.lattice(30)
+    nl = horizon.search(to_gpu(library, points), 0.5)
+    indices = torch.as_tensor(nl.indices, device="cuda") if library == "torch" else cupy.asarray(nl.indices)
+    del nl
+    assert int(indices.sum()) == int(horizon.search(points, 0.5).indices.sum())
+
+
+@pytest.mark.parametrize("library", libraries)
+def test_clear_errors_for_gpu_arrays(library):
+    points = to_gpu(library, horizon.random_cloud(100, seed=1))
+    with pytest.raises(ValueError, match="float64"):
+        horizon.search(points.float() if library == "torch" else points.astype(cupy.float32), 0.5)
+    wide = to_gpu(library, np.zeros((100, 4)))
+    with pytest.raises(ValueError, match="C-contiguous"):
+        horizon.search(wide[:, :3], 0.5)
+
+
+@pytest.mark.skipif("torch" not in libraries, reason="needs PyTorch")
+def test_a_solver_loop_on_the_gpu():
+    points = torch.from_numpy(horizon.random_cloud(100000, seed=3)).cuda()
+    for step in range(3):
+        points += 0.001 * torch.sin(points + step)
+        nl = horizon.search(points, 0.4)
+        assert np.array_equal(nl.to_host().indices, horizon.search(points.cpu().numpy(), 0.4).indices)
