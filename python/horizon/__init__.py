@@ -91,7 +91,7 @@ class _CudaArray:
         self.__cuda_array_interface__ = {
             "shape": (length,),
             "typestr": typestr,
-            "data": (pointer, True),
+            "data": (pointer, False),  # PyTorch refuses read-only arrays; writes change the list
             "strides": None,
             "version": 3,
             "stream": owner.stream or 1,  # the stream it was built on; 1: the legacy default stream
