@@ -37,6 +37,17 @@ py::array view(const T* data, std::size_t count, py::handle owner) {
   return py::array(py::dtype::of<T>(), {count}, {sizeof(T)}, data, owner);
 }
 
+horizon::SearchOptions options_of(double horizon, const std::string& metric, bool half, bool sort_rows,
+                                  int cells_per_horizon) {
+  horizon::SearchOptions options;
+  options.horizon = horizon;
+  options.metric = horizon::parse_metric(metric);
+  options.half = half;
+  options.sort_rows = sort_rows;
+  options.cells_per_horizon = cells_per_horizon;
+  return options;
+}
+
 /// points: a C-contiguous (N, 2|3) float64 or float32 array (the Python layer makes it so).
 OwnedList search(py::array points, double horizon, const std::string& metric, bool half, bool sort_rows,
                  const std::string& backend, int threads, int device, int cells_per_horizon) {
@@ -46,15 +57,10 @@ OwnedList search(py::array points, double horizon, const std::string& metric, bo
       points.dtype().is(py::dtype::of<float>())
           ? horizon::PointView(static_cast<const float*>(points.data()), rows, dims)
           : horizon::PointView(static_cast<const double*>(points.data()), rows, dims);
-  horizon::SearchOptions options;
-  options.horizon = horizon;
-  options.metric = horizon::parse_metric(metric);
-  options.half = half;
-  options.sort_rows = sort_rows;
+  horizon::SearchOptions options = options_of(horizon, metric, half, sort_rows, cells_per_horizon);
   options.backend = horizon::parse_backend(backend);
   options.threads = threads;
   options.device = device;
-  options.cells_per_horizon = cells_per_horizon;
   py::gil_scoped_release unlocked;
   return OwnedList{horizon::search(view, options)};
 }
@@ -65,12 +71,7 @@ OwnedDeviceList search_device(std::uintptr_t pointer, std::size_t count, int dim
                               double horizon, const std::string& metric, bool half, bool sort_rows,
                               int cells_per_horizon) {
   const auto* xyz = reinterpret_cast<const double*>(pointer);
-  horizon::SearchOptions options;
-  options.horizon = horizon;
-  options.metric = horizon::parse_metric(metric);
-  options.half = half;
-  options.sort_rows = sort_rows;
-  options.cells_per_horizon = cells_per_horizon;
+  horizon::SearchOptions options = options_of(horizon, metric, half, sort_rows, cells_per_horizon);
   py::gil_scoped_release unlocked;
   options.device = count ? horizon::cuda_use_device_of(xyz) : 0;
   auto list = horizon::search_device(xyz, count, dims, options, reinterpret_cast<horizon::cuda_stream>(stream));
