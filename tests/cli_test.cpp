@@ -136,3 +136,18 @@ TEST_F(CliTest, FailedWriteLeavesNoFileThatLooksValid) {
 }
 
 }  // namespace
+
+namespace {
+TEST_F(CliTest, GpusOptionIsCheckedAndUsed) {
+  const Result bad = run("search lattice:5 --horizon 2.5 --gpus 0,x");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_OUTPUT(bad, "expected all, a count, or a list");
+  const Result many = run("search lattice:5 --horizon 2.5 --backend cuda --gpus 64");
+  EXPECT_EQ(many.status, 2);
+  EXPECT_OUTPUT(many, "does not exist");
+  const Result cpu = run("search lattice:5 --horizon 2.5 --backend serial --gpus 1");
+  EXPECT_EQ(cpu.status, 2);
+  if (cpu.output.find("does not exist (0 visible)") == std::string::npos)  // a machine with a GPU
+    EXPECT_OUTPUT(cpu, "devices are for the cuda backend");
+}
+}  // namespace

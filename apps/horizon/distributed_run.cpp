@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "horizon/cuda.hpp"
 #include "horizon/distributed.hpp"
 #include "horizon/io.hpp"
 #include "horizon/stopwatch.hpp"
@@ -23,6 +24,23 @@ bool distributed_requested(const SearchArgs& args) {
   return size > 1 || !args.exchange.empty();
 }
 
+/// One rank per GPU: the ranks of a node take its GPUs (--gpus, else all visible) in turn by
+/// node-local rank.
+void bind_rank_to_gpu(SearchOptions& options) {
+  const bool cuda = options.backend == Backend::cuda ||
+                    (options.backend == Backend::automatic && backend_available(Backend::cuda));
+  if (!cuda) return;
+  MPI_Comm node;
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  int local = 0;
+  MPI_Comm_rank(node, &local);
+  MPI_Comm_free(&node);
+  std::vector<int> devices = options.devices;
+  for (int d = 0; devices.empty() && d < cuda_device_count(); ++d) devices.push_back(d);
+  if (!devices.empty()) options.device = devices[static_cast<std::size_t>(local) % devices.size()];
+  options.devices.clear();
+}
+
 void run_distributed(const SearchArgs& args) {
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
@@ -35,6 +53,7 @@ void run_distributed(const SearchArgs& args) {
 
   DistributedOptions options;
   options.search = search_options(args);
+  bind_rank_to_gpu(options.search);
   options.exchange = parse_exchange(args.exchange.empty() ? "halo" : args.exchange);
   options.decomposition = args.decomposition == "brick" ? Decomposition::Kind::brick : Decomposition::Kind::rcb;
   const std::size_t n = all.size();

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "horizon/cuda.hpp"
 #include "horizon/error.hpp"
 #include "horizon/io.hpp"
 #include "horizon/search.hpp"
@@ -66,6 +67,23 @@ void run_search(const SearchArgs& args) {
       report["seconds"]["kernels"] = stats.kernel_seconds;
       report["seconds"]["device_to_host"] = stats.device_to_host_seconds;
     }
+    if (!stats.parts.empty()) {  // several GPUs: the balance and each GPU's time
+      nlohmann::json parts = nlohmann::json::array();
+      double most_points = 0, most_entries = 0;
+      for (const PartStats& part : stats.parts) {
+        parts.push_back({{"device", part.device}, {"points", part.owned}, {"halo", part.halo},
+                         {"entries", part.entries}, {"seconds", part.seconds}});
+        most_points = std::max(most_points, static_cast<double>(part.owned));
+        most_entries = std::max(most_entries, static_cast<double>(part.entries));
+      }
+      const double count = static_cast<double>(stats.parts.size());
+      report["gpus"] = parts;
+      report["imbalance"] = {
+          {"points", most_points / (static_cast<double>(points.size()) / count)},
+          {"entries", list.total() > 0 ? most_entries / (static_cast<double>(list.total()) / count) : 1.0}};
+      report["seconds"]["partition"] = stats.partition_seconds;
+      report["seconds"]["assemble"] = stats.assemble_seconds;
+    }
     std::cout << report.dump() << std::endl;
   } else {
     std::cout << points.size() << " points (" << points.dims << "-D), horizon " << args.horizon
@@ -81,6 +99,39 @@ void run_search(const SearchArgs& args) {
 
 }  // namespace
 
+/// --gpus: "all", a count N (devices 0..N-1), or a comma-separated list of devices.
+std::vector<int> parse_gpus(const std::string& gpus) {
+  if (gpus.empty()) return {};
+  std::vector<int> devices;
+  const int visible = cuda_device_count();
+  if (gpus == "all") {
+    if (visible == 0) throw Error("--gpus all: no CUDA device is visible");
+    for (int d = 0; d < visible; ++d) devices.push_back(d);
+    return devices;
+  }
+  const bool list = gpus.find(',') != std::string::npos;
+  std::size_t at = 0;
+  while (at <= gpus.size()) {
+    const std::size_t end = std::min(gpus.find(',', at), gpus.size());
+    const std::string item = gpus.substr(at, end - at);
+    if (item.empty() || item.find_first_not_of("0123456789") != std::string::npos)
+      throw Error("--gpus " + gpus + ": expected all, a count, or a list of devices such as 0,1");
+    devices.push_back(std::stoi(item));
+    at = end + 1;
+  }
+  if (!list) {  // a count
+    const int count = devices[0];
+    if (count < 1) throw Error("--gpus " + gpus + ": the count must be at least 1");
+    devices.clear();
+    for (int d = 0; d < count; ++d) devices.push_back(d);
+  }
+  for (int d : devices)
+    if (d >= visible)
+      throw Error("--gpus " + gpus + ": CUDA device " + std::to_string(d) + " does not exist (" +
+                  std::to_string(visible) + " visible)");
+  return devices;
+}
+
 SearchOptions search_options(const SearchArgs& args) {
   SearchOptions options;
   options.horizon = args.horizon;
@@ -91,6 +142,7 @@ SearchOptions search_options(const SearchArgs& args) {
   options.backend = parse_backend(args.backend);
   options.threads = args.threads;
   options.device = args.device;
+  options.devices = parse_gpus(args.gpus);
   return options;
 }
 
@@ -110,6 +162,7 @@ void add_search(CLI::App& app) {
       ->check(CLI::IsMember({"auto", "serial", "openmp", "cuda"}));
   cmd->add_option("--threads", args->threads, "openmp threads (0: all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--device", args->device, "cuda device")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--gpus", args->gpus, "cuda: all, a count N, or devices 0,1,...: one part of the points per GPU");
   cmd->add_option("--metric", args->metric, "l2, l1 or linf")->check(CLI::IsMember({"l2", "l1", "linf"}));
   cmd->add_option("--cells-per-horizon", args->cells_per_horizon, "k: cell side horizon/k")
       ->check(CLI::IsMember({1, 2, 3}));

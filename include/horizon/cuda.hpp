@@ -67,6 +67,9 @@ void cuda_release_cached_memory(int device = 0);
 /// horizon::Error naming the pointer when it is not CUDA device memory.
 int cuda_use_device_of(const void* pointer);
 
+/// Number of CUDA devices visible (0 without CUDA or a driver).
+int cuda_device_count();
+
 /// Name of a CUDA device, or "" when there is none.
 std::string cuda_device_name(int device);
 

@@ -21,6 +21,11 @@ struct Box {
   bool near(const double* x, int dims, double reach) const;
 };
 
+/// The reach of a halo: the horizon widened by the rounding of the box tests and of the
+/// distance differences, which grows with the coordinates' magnitude (not the box's extent:
+/// points near 10^12 carry rounding errors of 10^-4).
+double halo_reach(const Bounds& box, int dims, double horizon);
+
 class Decomposition {
 public:
   enum class Kind { brick, rcb };

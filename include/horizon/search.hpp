@@ -3,6 +3,7 @@
 /// The entry point: all-pairs fixed-radius neighbour search of one point set against itself.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "horizon/metric.hpp"
 #include "horizon/neighbor_list.hpp"
@@ -37,6 +38,18 @@ struct SearchOptions {
   /// rows. The distributed layer puts its owned points first and its ghosts after.
   std::size_t queries = 0;
   std::int64_t gpu_batch_entries = 0; ///< cuda host API: most list entries per batch (0: as fit)
+  /// cuda: the GPUs of one search (empty: `device` alone). With several, the points are cut
+  /// into as many parts of equal point count (recursive coordinate bisection), each searched
+  /// with its horizon-wide halo on its own GPU and host thread, the rows assembled in input order.
+  std::vector<int> devices;
+};
+
+/// One part of a search over several devices: its device, points and time.
+struct PartStats {
+  int device = 0;
+  std::size_t owned = 0, halo = 0;  ///< points whose rows it built; points it read as references
+  std::int64_t entries = 0;         ///< entries of its rows
+  double seconds = 0;               ///< its search (upload, build, copy back), on its own thread
 };
 
 /// Seconds spent in each phase, and what ran.
@@ -51,6 +64,9 @@ struct SearchStats {
   double host_to_device_seconds = 0;
   double kernel_seconds = 0;
   double device_to_host_seconds = 0;
+  /// Several devices: each part, and the time to cut the points and to assemble the rows.
+  std::vector<PartStats> parts;
+  double partition_seconds = 0, assemble_seconds = 0;
 };
 
 /// The neighbour list of `points` against themselves. Throws horizon::Error on NaN/Inf

@@ -25,6 +25,7 @@ DeviceNeighborList search_device(const double*, std::size_t, int, const SearchOp
 }
 void cuda_release_cached_memory(int) {}
 int cuda_use_device_of(const void*) { no_cuda(); }
+int cuda_device_count() { return 0; }
 std::string cuda_device_name(int) { return ""; }
 
 }  // namespace horizon

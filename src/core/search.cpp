@@ -2,6 +2,7 @@
 
 #include "../backends/backends.hpp"
 #include "family_search.hpp"
+#include "partitioned_search.hpp"
 #include "horizon/error.hpp"
 #include "horizon/grid.hpp"
 
@@ -55,7 +56,26 @@ NeighborList search(PointView points, const SearchOptions& options, SearchStats*
   if (!backend_available(backend))
     throw Error(std::string("backend '") + backend_name(backend) + "' is not available here");
   out.backend = backend;
+  if (!options.devices.empty() && backend != Backend::cuda)
+    throw Error(std::string("devices are for the cuda backend, not '") + backend_name(backend) + "'");
   if (points.empty()) return NeighborList({0}, {}, options.half);
+  if (backend == Backend::cuda && options.devices.size() > 1) {
+    std::vector<SearchOptions> per_device;
+    for (int device : options.devices) {
+      SearchOptions one = options;
+      one.backend = Backend::cuda;
+      one.device = device;
+      one.devices.clear();
+      per_device.push_back(one);
+    }
+    return detail::search_parts(points, options, per_device, out);
+  }
+  if (options.devices.size() == 1) {
+    SearchOptions one = options;
+    one.device = options.devices[0];
+    one.devices.clear();
+    return search(points, one, stats);
+  }
 
   switch (backend) {
     case Backend::openmp: return detail::search_openmp(points, options, out);

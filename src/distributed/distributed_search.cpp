@@ -217,9 +217,7 @@ OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<
 
   // Preprocess: the global bounding box; a horizon widened by the rounding of the box tests.
   const Bounds box = global_bounds(rank, points);
-  double extent = 0;
-  for (int a = 0; a < dims; ++a) extent = std::max(extent, box.hi[a] - box.lo[a]);
-  const double reach = options.search.horizon * (1 + std::ldexp(1.0, -40)) + std::ldexp(std::max(extent, 0.0), -49);
+  const double reach = halo_reach(box, dims, options.search.horizon);
   seconds[0] = clock.lap();
 
   std::vector<Packed> owned, ghosts;

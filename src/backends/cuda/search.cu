@@ -377,6 +377,11 @@ int cuda_use_device_of(const void* pointer) {
   return attributes.device;
 }
 
+int cuda_device_count() {
+  int count = 0;
+  return cudaGetDeviceCount(&count) == cudaSuccess ? count : 0;
+}
+
 std::string cuda_device_name(int device) {
   cudaDeviceProp properties;
   if (cudaGetDeviceProperties(&properties, device) != cudaSuccess) return "";

@@ -7,6 +7,12 @@
 
 namespace horizon {
 
+double halo_reach(const Bounds& box, int dims, double horizon) {
+  double magnitude = 0;
+  for (int a = 0; a < dims; ++a) magnitude = std::max({magnitude, std::abs(box.lo[a]), std::abs(box.hi[a])});
+  return horizon * (1 + std::ldexp(1.0, -40)) + std::ldexp(magnitude, -48);
+}
+
 bool Box::contains(const double* x, int dims) const {
   for (int a = 0; a < dims; ++a)
     if (x[a] < lo[a] || x[a] >= hi[a]) return false;

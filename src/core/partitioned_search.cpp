@@ -1,0 +1,174 @@
+#include "partitioned_search.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <exception>
+#include <thread>
+
+#include "horizon/decomposition.hpp"
+#include "horizon/grid.hpp"
+#include "parallel_scan.hpp"
+
+namespace horizon::detail {
+namespace {
+
+/// One part: the ids of the points it owns and of its halo (ascending), then its rows.
+struct Part {
+  std::vector<point_id> owned, halo;
+  Buffer<std::int64_t> offsets;  // rows of the owned points, entries as global ids
+  Buffer<point_id> indices;
+  PartStats stats;
+};
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// Owner and halo membership of every point. Each thread takes a contiguous range of ids, so
+/// concatenating the threads' pieces in order keeps every list ascending.
+void assign(PointView points, const Decomposition& d, double reach, std::vector<Part>& parts) {
+  const int count = static_cast<int>(parts.size()), dims = points.dims();
+  const auto n = static_cast<std::int64_t>(points.size());
+  const int pieces = omp_get_max_threads();
+  std::vector<std::vector<std::vector<point_id>>> owned(pieces), halo(pieces);
+#pragma omp parallel for schedule(static)
+  for (int t = 0; t < pieces; ++t) {
+    owned[t].resize(count);
+    halo[t].resize(count);
+    double x[3] = {0, 0, 0};
+    for (std::int64_t i = n * t / pieces; i < n * (t + 1) / pieces; ++i) {
+      for (int a = 0; a < dims; ++a) x[a] = points(static_cast<std::size_t>(i), a);
+      const int owner = d.owner(x);
+      owned[t][owner].push_back(static_cast<point_id>(i));
+      for (int p = 0; p < count; ++p)
+        if (p != owner && d.box(p).near(x, dims, reach)) halo[t][p].push_back(static_cast<point_id>(i));
+    }
+  }
+  for (int p = 0; p < count; ++p)
+    for (int t = 0; t < pieces; ++t) {
+      parts[p].owned.insert(parts[p].owned.end(), owned[t][p].begin(), owned[t][p].end());
+      parts[p].halo.insert(parts[p].halo.end(), halo[t][p].begin(), halo[t][p].end());
+    }
+}
+
+/// Searches a part (owned points first, then its halo, as references only) and maps its rows to
+/// global ids. A local row is two runs ascending in global id (owned, then halo): one merge
+/// sorts it. Half lists are taken from the full local list (local ids do not order globally).
+void search_part(PointView points, Part& part, const SearchOptions& options, const SearchOptions& part_options) {
+  const auto start = std::chrono::steady_clock::now();
+  const int dims = points.dims();
+  const std::size_t owned = part.owned.size(), local_count = owned + part.halo.size();
+  std::vector<point_id> global(part.owned);
+  global.insert(global.end(), part.halo.begin(), part.halo.end());
+  PointSet local{dims, std::vector<double>(local_count * static_cast<std::size_t>(dims))};
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < static_cast<std::int64_t>(local_count); ++i)
+    for (int a = 0; a < dims; ++a)
+      local.xyz[static_cast<std::size_t>(i) * dims + a] = points(static_cast<std::size_t>(global[i]), a);
+
+  part.offsets.assign(owned + 1, 0);
+  if (owned > 0) {
+    SearchOptions o = part_options;
+    o.half = false;
+    o.queries = owned;
+    o.devices.clear();
+    const NeighborList list = search(local.view(), o);
+    const auto rows = static_cast<std::int64_t>(owned);
+#pragma omp parallel for schedule(static)
+    for (std::int64_t i = 0; i < rows; ++i) {
+      const auto row = list.row(static_cast<std::size_t>(i));
+      std::int64_t kept = static_cast<std::int64_t>(row.size());
+      if (options.half)
+        kept = std::count_if(row.begin(), row.end(), [&](point_id j) { return global[j] > global[i]; });
+      part.offsets[static_cast<std::size_t>(i) + 1] = kept;
+    }
+    inclusive_scan(part.offsets.data() + 1, owned, omp_get_max_threads());
+    part.indices.resize(static_cast<std::size_t>(part.offsets[owned]));
+    const auto first_halo = static_cast<point_id>(owned);
+#pragma omp parallel for schedule(dynamic, 1024)
+    for (std::int64_t i = 0; i < rows; ++i) {
+      point_id* out = part.indices.data() + part.offsets[static_cast<std::size_t>(i)];
+      point_id* halo_from = nullptr;
+      point_id* at = out;
+      for (point_id j : list.row(static_cast<std::size_t>(i))) {
+        const point_id g = global[static_cast<std::size_t>(j)];
+        if (options.half && g <= global[i]) continue;
+        if (j >= first_halo && !halo_from) halo_from = at;
+        *at++ = g;
+      }
+      if (options.sort_rows && halo_from) std::inplace_merge(out, halo_from, at);
+    }
+  }
+  part.stats.device = part_options.device;
+  part.stats.owned = owned;
+  part.stats.halo = part.halo.size();
+  part.stats.entries = part.offsets[owned];
+  part.stats.seconds = seconds_since(start);
+}
+
+}  // namespace
+
+NeighborList search_parts(PointView points, const SearchOptions& options,
+                          const std::vector<SearchOptions>& part_options, SearchStats& stats) {
+  auto clock = std::chrono::steady_clock::now();
+  const int count = static_cast<int>(part_options.size());
+  // Cuts placed on a strided sample of at most 2^20 points: equal counts to within a fraction
+  // of a percent, without sorting all the points.
+  const std::size_t stride = std::max<std::size_t>(1, points.size() >> 20);
+  PointSet sample{points.dims(), {}};
+  for (std::size_t i = 0; i < points.size(); i += stride)
+    for (int a = 0; a < points.dims(); ++a) sample.xyz.push_back(points(i, a));
+  const Bounds box = bounds_of(points, omp_get_max_threads());
+  const Decomposition d = Decomposition::rcb(box, sample.view(), count);
+  std::vector<Part> parts(static_cast<std::size_t>(count));
+  assign(points, d, halo_reach(box, points.dims(), options.horizon), parts);
+  stats.partition_seconds = seconds_since(clock);
+
+  clock = std::chrono::steady_clock::now();
+  std::vector<std::exception_ptr> failures(static_cast<std::size_t>(count));
+  std::vector<std::thread> threads;
+  for (int p = 0; p < count; ++p)
+    threads.emplace_back([&, p] {
+      try {
+        search_part(points, parts[p], options, part_options[p]);
+      } catch (...) {
+        failures[p] = std::current_exception();
+      }
+    });
+  for (auto& t : threads) t.join();
+  for (const auto& failure : failures)
+    if (failure) std::rethrow_exception(failure);
+  const double parts_seconds = seconds_since(clock);
+
+  // Rows in input order: each point's row comes from the one part that owns it.
+  clock = std::chrono::steady_clock::now();
+  const std::size_t n = points.size();
+  Buffer<std::int64_t> offsets(n + 1);
+  offsets[0] = 0;
+  for (const Part& part : parts) {
+    const auto rows = static_cast<std::int64_t>(part.owned.size());
+#pragma omp parallel for schedule(static)
+    for (std::int64_t r = 0; r < rows; ++r)
+      offsets[static_cast<std::size_t>(part.owned[r]) + 1] = part.offsets[r + 1] - part.offsets[r];
+  }
+  inclusive_scan(offsets.data() + 1, n, omp_get_max_threads());
+  Buffer<point_id> indices(static_cast<std::size_t>(offsets[n]));
+  for (Part& part : parts) {
+    const auto rows = static_cast<std::int64_t>(part.owned.size());
+#pragma omp parallel for schedule(dynamic, 4096)
+    for (std::int64_t r = 0; r < rows; ++r)
+      std::memcpy(indices.data() + offsets[static_cast<std::size_t>(part.owned[r])], part.indices.data() + part.offsets[r],
+                  static_cast<std::size_t>(part.offsets[r + 1] - part.offsets[r]) * sizeof(point_id));
+    stats.parts.push_back(part.stats);
+    part = Part{};  // frees the part's rows as soon as they are placed
+  }
+  stats.assemble_seconds = seconds_since(clock);
+  stats.search_seconds = stats.partition_seconds + parts_seconds + stats.assemble_seconds;
+  stats.threads = count;
+  return NeighborList(std::move(offsets), std::move(indices), options.half);
+}
+
+}  // namespace horizon::detail

@@ -1,0 +1,18 @@
+#pragma once
+// One process, several devices (thesis ch. 5: overlapping partitions, no communication): the
+// points are cut into parts of equal point count by recursive coordinate bisection; each part
+// is searched, with the points within the horizon of its box as references only, by its own
+// host thread; its rows, mapped to global ids, are then copied into the list in input order.
+#include <vector>
+
+#include "horizon/search.hpp"
+
+namespace horizon::detail {
+
+/// The list of `points` from one search per entry of `part_options` (each a node-local search:
+/// a backend and, for cuda, a device). stats.parts gets each part's points, entries and time;
+/// stats.search_seconds covers everything: cutting, the parts (in parallel) and the assembly.
+NeighborList search_parts(PointView points, const SearchOptions& options,
+                          const std::vector<SearchOptions>& part_options, SearchStats& stats);
+
+}  // namespace horizon::detail

@@ -1,0 +1,99 @@
+// The one-process multi-device driver: the partition, the halos and the assembly in input order,
+// with CPU backends standing in for the GPUs (the same code path runs each part), then on the
+// GPU when there is one (several parts on one GPU exercise the threads and streams as well).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <string>
+
+#include "core/partitioned_search.hpp"
+#include "datasets.hpp"
+#include "horizon/search.hpp"
+
+namespace horizon::testing {
+namespace {
+
+SearchOptions base(const Dataset& data, Metric metric, bool half) {
+  SearchOptions options;
+  options.horizon = data.horizon;
+  options.metric = metric;
+  options.half = half;
+  options.backend = Backend::serial;
+  return options;
+}
+
+TEST(PartitionedSearch, AnyPartCountGivesTheSerialList) {
+  for (int dims : {2, 3})
+    for (const Dataset& data : datasets(dims))
+      for (Metric metric : {Metric::euclidean, Metric::chebyshev})
+        for (bool half : {false, true})
+          for (int parts : {1, 2, 3, 5}) {
+            const SearchOptions options = base(data, metric, half);
+            std::vector<SearchOptions> per_part(static_cast<std::size_t>(parts), options);
+            per_part.back().backend = Backend::openmp;
+            SearchStats stats;
+            const NeighborList list = detail::search_parts(data.points.view(), options, per_part, stats);
+            ASSERT_EQ(list, search(data.points.view(), options))
+                << data.name << " dims " << dims << " half " << half << " parts " << parts;
+            ASSERT_EQ(stats.parts.size(), static_cast<std::size_t>(parts));
+            std::size_t owned = 0;
+            std::int64_t entries = 0;
+            for (const PartStats& part : stats.parts) {
+              owned += part.owned;
+              entries += part.entries;
+            }
+            EXPECT_EQ(owned, data.points.size());
+            EXPECT_EQ(entries, list.total());
+          }
+}
+
+TEST(PartitionedSearch, PartsHoldEqualPointCounts) {
+  const PointSet points = clustered_cloud(200000, 5, 0.5, 3, 4);
+  SearchOptions options;
+  options.horizon = 0.1;
+  options.backend = Backend::openmp;
+  SearchStats stats;
+  detail::search_parts(points.view(), options, std::vector<SearchOptions>(4, options), stats);
+  for (const PartStats& part : stats.parts) EXPECT_NEAR(part.owned, 50000.0, 1000.0);
+}
+
+TEST(PartitionedSearch, UnsortedRowsHoldTheSameFamilies) {
+  const PointSet points = random_cloud(5000, 3, 8);
+  SearchOptions options;
+  options.horizon = 0.9;
+  options.backend = Backend::serial;
+  options.sort_rows = false;
+  SearchStats stats;
+  const NeighborList unsorted = detail::search_parts(points.view(), options, std::vector<SearchOptions>(3, options), stats);
+  options.sort_rows = true;
+  const NeighborList sorted = search(points.view(), options);
+  ASSERT_EQ(unsorted.offsets(), sorted.offsets());
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    std::vector<point_id> row(unsorted.row(i).begin(), unsorted.row(i).end());
+    std::sort(row.begin(), row.end());
+    ASSERT_TRUE(std::equal(row.begin(), row.end(), sorted.row(i).begin(), sorted.row(i).end())) << i;
+  }
+}
+
+TEST(PartitionedSearch, SeveralDevicesThroughSearchOptions) {
+  if (!backend_available(Backend::cuda)) {
+    const char* required = std::getenv("HORIZON_REQUIRE_GPU");
+    if (required && std::string(required) == "1") FAIL() << "HORIZON_REQUIRE_GPU=1 but no usable GPU";
+    GTEST_SKIP() << "no usable GPU";
+  }
+  const PointSet points = clustered_cloud(300000, 20, 0.6, 3, 9);
+  SearchOptions options;
+  options.horizon = 0.12;
+  options.backend = Backend::cuda;
+  options.devices = {0, 0, 0};  // three parts, three threads, on the one GPU there surely is
+  SearchStats stats;
+  const NeighborList list = search(points.view(), options, &stats);
+  SearchOptions serial = options;
+  serial.backend = Backend::serial;
+  serial.devices.clear();
+  EXPECT_EQ(list, search(points.view(), serial));
+  EXPECT_EQ(stats.parts.size(), 3u);
+}
+
+}  // namespace
+}  // namespace horizon::testing
