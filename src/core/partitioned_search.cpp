@@ -18,8 +18,7 @@ namespace {
 /// One part: the ids of the points it owns and of its halo (ascending), then its rows.
 struct Part {
   std::vector<point_id> owned, halo;
-  Buffer<std::int64_t> offsets;  // rows of the owned points, entries as global ids
-  Buffer<point_id> indices;
+  NeighborList rows;  // of the owned points, entries as global ids
   PartStats stats;
 };
 
@@ -55,8 +54,7 @@ void assign(PointView points, const Decomposition& d, double reach, std::vector<
 }
 
 /// Searches a part (owned points first, then its halo, as references only) and maps its rows to
-/// global ids. A local row is two runs ascending in global id (owned, then halo): one merge
-/// sorts it. Half lists are taken from the full local list (local ids do not order globally).
+/// global ids.
 void search_part(PointView points, Part& part, const SearchOptions& options, const SearchOptions& part_options) {
   const auto start = std::chrono::steady_clock::now();
   const int dims = points.dims();
@@ -69,47 +67,54 @@ void search_part(PointView points, Part& part, const SearchOptions& options, con
     for (int a = 0; a < dims; ++a)
       local.xyz[static_cast<std::size_t>(i) * dims + a] = points(static_cast<std::size_t>(global[i]), a);
 
-  part.offsets.assign(owned + 1, 0);
+  NeighborList list({0}, {}, false);
   if (owned > 0) {
     SearchOptions o = part_options;
     o.half = false;
     o.queries = owned;
     o.devices.clear();
-    const NeighborList list = search(local.view(), o);
-    const auto rows = static_cast<std::int64_t>(owned);
-#pragma omp parallel for schedule(static)
-    for (std::int64_t i = 0; i < rows; ++i) {
-      const auto row = list.row(static_cast<std::size_t>(i));
-      std::int64_t kept = static_cast<std::int64_t>(row.size());
-      if (options.half)
-        kept = std::count_if(row.begin(), row.end(), [&](point_id j) { return global[j] > global[i]; });
-      part.offsets[static_cast<std::size_t>(i) + 1] = kept;
-    }
-    inclusive_scan(part.offsets.data() + 1, owned, omp_get_max_threads());
-    part.indices.resize(static_cast<std::size_t>(part.offsets[owned]));
-    const auto first_halo = static_cast<point_id>(owned);
-#pragma omp parallel for schedule(dynamic, 1024)
-    for (std::int64_t i = 0; i < rows; ++i) {
-      point_id* out = part.indices.data() + part.offsets[static_cast<std::size_t>(i)];
-      point_id* halo_from = nullptr;
-      point_id* at = out;
-      for (point_id j : list.row(static_cast<std::size_t>(i))) {
-        const point_id g = global[static_cast<std::size_t>(j)];
-        if (options.half && g <= global[i]) continue;
-        if (j >= first_halo && !halo_from) halo_from = at;
-        *at++ = g;
-      }
-      if (options.sort_rows && halo_from) std::inplace_merge(out, halo_from, at);
-    }
+    list = search(local.view(), o);
   }
+  part.rows = rows_in_global_ids(list, global, owned, options.half, options.sort_rows);
   part.stats.device = part_options.device;
   part.stats.owned = owned;
   part.stats.halo = part.halo.size();
-  part.stats.entries = part.offsets[owned];
+  part.stats.entries = part.rows.total();
   part.stats.seconds = seconds_since(start);
 }
 
 }  // namespace
+
+NeighborList rows_in_global_ids(const NeighborList& list, const std::vector<point_id>& global, std::size_t owned,
+                                bool half, bool sort_rows) {
+  Buffer<std::int64_t> offsets(owned + 1);
+  offsets[0] = 0;
+  const auto rows = static_cast<std::int64_t>(owned);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < rows; ++i) {
+    const auto row = list.row(static_cast<std::size_t>(i));
+    std::int64_t kept = static_cast<std::int64_t>(row.size());
+    if (half) kept = std::count_if(row.begin(), row.end(), [&](point_id j) { return global[j] > global[i]; });
+    offsets[static_cast<std::size_t>(i) + 1] = kept;
+  }
+  inclusive_scan(offsets.data() + 1, owned, omp_get_max_threads());
+  Buffer<point_id> indices(static_cast<std::size_t>(offsets[owned]));
+  const auto first_halo = static_cast<point_id>(owned);
+#pragma omp parallel for schedule(dynamic, 1024)
+  for (std::int64_t i = 0; i < rows; ++i) {
+    point_id* out = indices.data() + offsets[static_cast<std::size_t>(i)];
+    point_id* halo_from = nullptr;
+    point_id* at = out;
+    for (point_id j : list.row(static_cast<std::size_t>(i))) {
+      const point_id g = global[static_cast<std::size_t>(j)];
+      if (half && g <= global[i]) continue;
+      if (j >= first_halo && !halo_from) halo_from = at;
+      *at++ = g;
+    }
+    if (sort_rows && halo_from) std::inplace_merge(out, halo_from, at);
+  }
+  return NeighborList(std::move(offsets), std::move(indices), half);
+}
 
 NeighborList search_parts(PointView points, const SearchOptions& options,
                           const std::vector<SearchOptions>& part_options, SearchStats& stats) {
@@ -152,7 +157,7 @@ NeighborList search_parts(PointView points, const SearchOptions& options,
     const auto rows = static_cast<std::int64_t>(part.owned.size());
 #pragma omp parallel for schedule(static)
     for (std::int64_t r = 0; r < rows; ++r)
-      offsets[static_cast<std::size_t>(part.owned[r]) + 1] = part.offsets[r + 1] - part.offsets[r];
+      offsets[static_cast<std::size_t>(part.owned[r]) + 1] = static_cast<std::int64_t>(part.rows.row(r).size());
   }
   inclusive_scan(offsets.data() + 1, n, omp_get_max_threads());
   Buffer<point_id> indices(static_cast<std::size_t>(offsets[n]));
@@ -160,8 +165,8 @@ NeighborList search_parts(PointView points, const SearchOptions& options,
     const auto rows = static_cast<std::int64_t>(part.owned.size());
 #pragma omp parallel for schedule(dynamic, 4096)
     for (std::int64_t r = 0; r < rows; ++r)
-      std::memcpy(indices.data() + offsets[static_cast<std::size_t>(part.owned[r])], part.indices.data() + part.offsets[r],
-                  static_cast<std::size_t>(part.offsets[r + 1] - part.offsets[r]) * sizeof(point_id));
+      std::memcpy(indices.data() + offsets[static_cast<std::size_t>(part.owned[r])], part.rows.row(r).data(),
+                  part.rows.row(r).size() * sizeof(point_id));
     stats.parts.push_back(part.stats);
     part = Part{};  // frees the part's rows as soon as they are placed
   }

@@ -9,6 +9,14 @@
 
 namespace horizon::detail {
 
+/// The rows of the first `owned` points of `list`, a full list of local points (owned points
+/// first, then references), with ids mapped through `global`. Each local row is two runs
+/// ascending in global id (owned, then references) when `global` ascends within each: one
+/// merge sorts it. Half lists keep j > i by global id (local ids do not order globally).
+/// Shared by the multi-device driver and the distributed search; parallel over rows.
+NeighborList rows_in_global_ids(const NeighborList& list, const std::vector<point_id>& global, std::size_t owned,
+                                bool half, bool sort_rows);
+
 /// The list of `points` from one search per entry of `part_options` (each a node-local search:
 /// a backend and, for cuda, a device). stats.parts gets each part's points, entries and time;
 /// stats.search_seconds covers everything: cutting, the parts (in parallel) and the assembly.

@@ -5,6 +5,7 @@
 #include <limits>
 #include <numeric>
 
+#include "../core/partitioned_search.hpp"
 #include "exchange.hpp"
 #include "horizon/distributed.hpp"
 #include "horizon/error.hpp"
@@ -146,8 +147,7 @@ std::vector<Packed> halo_ghosts(const Rank& rank, const std::vector<Packed>& own
 }
 
 // Searches owned + ghosts on this node; only owned points get rows, in global ids. Owned points
-// come first and ghosts after, each run ordered by global id, so a row maps to two sorted runs
-// of global ids that one merge sorts.
+// come first and ghosts after, each run ordered by global id (rows_in_global_ids merges them).
 OwnedRows search_owned(std::vector<Packed>& owned, std::vector<Packed>& ghosts, int dims,
                        const SearchOptions& options) {
   const auto by_id = [](const Packed& a, const Packed& b) { return a[3] < b[3]; };
@@ -171,28 +171,8 @@ OwnedRows search_owned(std::vector<Packed>& owned, std::vector<Packed>& ghosts, 
     return out;
   }
   const NeighborList list = search(local.view(), local_options);
-
-  Buffer<std::int64_t> offsets{0};
-  offsets.reserve(owned.size() + 1);
-  Buffer<point_id> indices;
-  indices.reserve(static_cast<std::size_t>(options.half ? list.total() / 2 + 1 : list.total()));
-  const auto owned_count = static_cast<point_id>(owned.size());
-  for (std::size_t i = 0; i < owned.size(); ++i) {
-    out.ids.push_back(global[i]);
-    const std::size_t start = indices.size();
-    std::size_t ghosts_from = start;
-    for (point_id j : list.row(i)) {
-      const point_id g = global[static_cast<std::size_t>(j)];
-      if (options.half && g <= global[i]) continue;
-      if (j < owned_count) ghosts_from = indices.size() + 1;
-      indices.push_back(g);
-    }
-    if (options.sort_rows)
-      std::inplace_merge(indices.begin() + static_cast<std::ptrdiff_t>(start),
-                         indices.begin() + static_cast<std::ptrdiff_t>(ghosts_from), indices.end());
-    offsets.push_back(static_cast<std::int64_t>(indices.size()));
-  }
-  out.rows = NeighborList(std::move(offsets), std::move(indices), options.half);
+  out.ids.assign(global.begin(), global.begin() + static_cast<std::ptrdiff_t>(owned.size()));
+  out.rows = detail::rows_in_global_ids(list, global, owned.size(), options.half, options.sort_rows);
   return out;
 }
 
