@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstring>
 #include <exception>
 #include <thread>
 
@@ -15,12 +14,35 @@
 namespace horizon::detail {
 namespace {
 
-/// One part: the ids of the points it owns and of its halo (ascending), then its rows.
+/// One part: the ids of the points it owns and of its halo (ascending), then its local list
+/// (owned points first, then the halo) and `global`, the global id of each local point.
 struct Part {
-  std::vector<point_id> owned, halo;
-  NeighborList rows;  // of the owned points, entries as global ids
+  std::vector<point_id> owned, halo, global;
+  NeighborList list;
   PartStats stats;
 };
+
+/// How many entries row i of a local list keeps (half lists: j > i by global id).
+std::int64_t kept(const NeighborList& list, std::size_t i, const std::vector<point_id>& global, bool half) {
+  const auto row = list.row(i);
+  if (!half) return static_cast<std::int64_t>(row.size());
+  return std::count_if(row.begin(), row.end(), [&](point_id j) { return global[j] > global[i]; });
+}
+
+/// Writes row i of a local list at `out` in global ids: two runs ascending in global id (the
+/// owned points', then the references'), which one merge sorts.
+void write_row(const NeighborList& list, std::size_t i, const std::vector<point_id>& global, std::size_t owned,
+               bool half, bool sort_rows, point_id* out) {
+  point_id* references_from = nullptr;
+  point_id* at = out;
+  for (point_id j : list.row(i)) {
+    const point_id g = global[static_cast<std::size_t>(j)];
+    if (half && g <= global[i]) continue;
+    if (static_cast<std::size_t>(j) >= owned && !references_from) references_from = at;
+    *at++ = g;
+  }
+  if (sort_rows && references_from) std::inplace_merge(out, references_from, at);
+}
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -53,13 +75,13 @@ void assign(PointView points, const Decomposition& d, double reach, std::vector<
     }
 }
 
-/// Searches a part (owned points first, then its halo, as references only) and maps its rows to
-/// global ids.
+/// Searches a part: owned points first, then its halo, as references only.
 void search_part(PointView points, Part& part, const SearchOptions& options, const SearchOptions& part_options) {
   const auto start = std::chrono::steady_clock::now();
   const int dims = points.dims();
   const std::size_t owned = part.owned.size(), local_count = owned + part.halo.size();
-  std::vector<point_id> global(part.owned);
+  std::vector<point_id>& global = part.global;
+  global = part.owned;
   global.insert(global.end(), part.halo.begin(), part.halo.end());
   PointSet local{dims, std::vector<double>(local_count * static_cast<std::size_t>(dims))};
 #pragma omp parallel for schedule(static)
@@ -67,19 +89,17 @@ void search_part(PointView points, Part& part, const SearchOptions& options, con
     for (int a = 0; a < dims; ++a)
       local.xyz[static_cast<std::size_t>(i) * dims + a] = points(static_cast<std::size_t>(global[i]), a);
 
-  NeighborList list({0}, {}, false);
+  part.list = NeighborList({0}, {}, false);
   if (owned > 0) {
     SearchOptions o = part_options;
     o.half = false;
     o.queries = owned;
     o.devices.clear();
-    list = search(local.view(), o);
+    part.list = search(local.view(), o);
   }
-  part.rows = rows_in_global_ids(list, global, owned, options.half, options.sort_rows);
   part.stats.device = part_options.device;
   part.stats.owned = owned;
   part.stats.halo = part.halo.size();
-  part.stats.entries = part.rows.total();
   part.stats.seconds = seconds_since(start);
 }
 
@@ -91,28 +111,12 @@ NeighborList rows_in_global_ids(const NeighborList& list, const std::vector<poin
   offsets[0] = 0;
   const auto rows = static_cast<std::int64_t>(owned);
 #pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < rows; ++i) {
-    const auto row = list.row(static_cast<std::size_t>(i));
-    std::int64_t kept = static_cast<std::int64_t>(row.size());
-    if (half) kept = std::count_if(row.begin(), row.end(), [&](point_id j) { return global[j] > global[i]; });
-    offsets[static_cast<std::size_t>(i) + 1] = kept;
-  }
+  for (std::int64_t i = 0; i < rows; ++i) offsets[i + 1] = kept(list, static_cast<std::size_t>(i), global, half);
   inclusive_scan(offsets.data() + 1, owned, omp_get_max_threads());
   Buffer<point_id> indices(static_cast<std::size_t>(offsets[owned]));
-  const auto first_halo = static_cast<point_id>(owned);
 #pragma omp parallel for schedule(dynamic, 1024)
-  for (std::int64_t i = 0; i < rows; ++i) {
-    point_id* out = indices.data() + offsets[static_cast<std::size_t>(i)];
-    point_id* halo_from = nullptr;
-    point_id* at = out;
-    for (point_id j : list.row(static_cast<std::size_t>(i))) {
-      const point_id g = global[static_cast<std::size_t>(j)];
-      if (half && g <= global[i]) continue;
-      if (j >= first_halo && !halo_from) halo_from = at;
-      *at++ = g;
-    }
-    if (sort_rows && halo_from) std::inplace_merge(out, halo_from, at);
-  }
+  for (std::int64_t i = 0; i < rows; ++i)
+    write_row(list, static_cast<std::size_t>(i), global, owned, half, sort_rows, indices.data() + offsets[i]);
   return NeighborList(std::move(offsets), std::move(indices), half);
 }
 
@@ -148,7 +152,7 @@ NeighborList search_parts(PointView points, const SearchOptions& options,
     if (failure) std::rethrow_exception(failure);
   const double parts_seconds = seconds_since(clock);
 
-  // Rows in input order: each point's row comes from the one part that owns it.
+  // Rows in input order, each written once, in global ids, straight from its part's local list.
   clock = std::chrono::steady_clock::now();
   const std::size_t n = points.size();
   Buffer<std::int64_t> offsets(n + 1);
@@ -157,18 +161,23 @@ NeighborList search_parts(PointView points, const SearchOptions& options,
     const auto rows = static_cast<std::int64_t>(part.owned.size());
 #pragma omp parallel for schedule(static)
     for (std::int64_t r = 0; r < rows; ++r)
-      offsets[static_cast<std::size_t>(part.owned[r]) + 1] = static_cast<std::int64_t>(part.rows.row(r).size());
+      offsets[static_cast<std::size_t>(part.owned[r]) + 1] = kept(part.list, static_cast<std::size_t>(r), part.global, options.half);
   }
   inclusive_scan(offsets.data() + 1, n, omp_get_max_threads());
   Buffer<point_id> indices(static_cast<std::size_t>(offsets[n]));
   for (Part& part : parts) {
     const auto rows = static_cast<std::int64_t>(part.owned.size());
-#pragma omp parallel for schedule(dynamic, 4096)
-    for (std::int64_t r = 0; r < rows; ++r)
-      std::memcpy(indices.data() + offsets[static_cast<std::size_t>(part.owned[r])], part.rows.row(r).data(),
-                  part.rows.row(r).size() * sizeof(point_id));
+    std::int64_t entries = 0;
+#pragma omp parallel for schedule(dynamic, 1024) reduction(+ : entries)
+    for (std::int64_t r = 0; r < rows; ++r) {
+      const std::size_t g = static_cast<std::size_t>(part.owned[r]);
+      write_row(part.list, static_cast<std::size_t>(r), part.global, part.owned.size(), options.half, options.sort_rows,
+                indices.data() + offsets[g]);
+      entries += offsets[g + 1] - offsets[g];
+    }
+    part.stats.entries = entries;
     stats.parts.push_back(part.stats);
-    part = Part{};  // frees the part's rows as soon as they are placed
+    part = Part{};  // frees the part's list as soon as its rows are placed
   }
   stats.assemble_seconds = seconds_since(clock);
   stats.search_seconds = stats.partition_seconds + parts_seconds + stats.assemble_seconds;
