@@ -8,6 +8,7 @@
 
 #include "core/partitioned_search.hpp"
 #include "datasets.hpp"
+#include "same_families.hpp"
 #include "horizon/search.hpp"
 
 namespace horizon::testing {
@@ -66,13 +67,7 @@ TEST(PartitionedSearch, UnsortedRowsHoldTheSameFamilies) {
   SearchStats stats;
   const NeighborList unsorted = detail::search_parts(points.view(), options, std::vector<SearchOptions>(3, options), stats);
   options.sort_rows = true;
-  const NeighborList sorted = search(points.view(), options);
-  ASSERT_EQ(unsorted.offsets(), sorted.offsets());
-  for (std::size_t i = 0; i < sorted.size(); ++i) {
-    std::vector<point_id> row(unsorted.row(i).begin(), unsorted.row(i).end());
-    std::sort(row.begin(), row.end());
-    ASSERT_TRUE(std::equal(row.begin(), row.end(), sorted.row(i).begin(), sorted.row(i).end())) << i;
-  }
+  expect_same_families(unsorted, search(points.view(), options));
 }
 
 TEST(PartitionedSearch, SeveralDevicesThroughSearchOptions) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "same_families.hpp"
 #include "horizon/error.hpp"
 #include "horizon/generate.hpp"
 #include "horizon/grid.hpp"
@@ -83,13 +84,7 @@ TEST(Options, UnsortedRowsHoldTheSameFamilies) {
   SearchOptions options = options_for(0.8);
   const NeighborList sorted = search(points.view(), options);
   options.sort_rows = false;
-  const NeighborList unsorted = search(points.view(), options);
-  ASSERT_EQ(sorted.offsets(), unsorted.offsets());
-  for (std::size_t i = 0; i < sorted.size(); ++i) {
-    std::vector<point_id> row(unsorted.row(i).begin(), unsorted.row(i).end());
-    std::sort(row.begin(), row.end());
-    EXPECT_TRUE(std::equal(row.begin(), row.end(), sorted.row(i).begin(), sorted.row(i).end()));
-  }
+  testing::expect_same_families(search(points.view(), options), sorted);
 }
 
 TEST(Options, QueriesGetRowsAndTheRestAreReferencesOnly) {
