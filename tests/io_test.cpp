@@ -97,6 +97,12 @@ TEST_F(IoTest, MalformedNpy) {
                 .find("N x 2 or N x 3"), std::string::npos);
   EXPECT_NE(read_error(npy("t.npy", "{'descr': '<f8', 'fortran_order': False, 'shape': (2, 3), }", 40))
                 .find("truncated"), std::string::npos);
+  // A header promising 2.4 TB in a small file: the header and the file size disagree (not "out
+  // of memory"), and nothing that large is allocated.
+  const std::string huge = read_error(npy("h.npy", "{'descr': '<f8', 'fortran_order': False, 'shape': (100000000000, 3), }", 4800));
+  EXPECT_NE(huge.find("needs 2400000000000 bytes of data, the file holds 4800"), std::string::npos) << huge;
+  EXPECT_NE(read_error(npy("o.npy", "{'descr': '<f8', 'fortran_order': False, 'shape': (4000000000000000000, 3), }", 8))
+                .find("too large"), std::string::npos);
   EXPECT_NE(read_error(write("m.npy", "not numpy")).find("bad magic"), std::string::npos);
   // float32 and Fortran order are read correctly.
   const std::string values("\x00\x00\x80\x3f\x00\x00\x00\x40\x00\x00\x40\x40\x00\x00\x80\x40", 16);

@@ -63,11 +63,25 @@ NpyArray read_npy(const std::string& path) {
   const bool fortran = header_field(header, "fortran_order", path) == "True";
   const std::string shape = header_field(header, "shape", path);
   const std::regex number("\\d+");
-  for (auto it = std::sregex_iterator(shape.begin(), shape.end(), number); it != std::sregex_iterator(); ++it)
+  for (auto it = std::sregex_iterator(shape.begin(), shape.end(), number); it != std::sregex_iterator(); ++it) {
+    if (it->str().size() > 18) throw Error(path + ": shape " + shape + " is too large");
     array.shape.push_back(std::stoull(it->str()));
+  }
 
+  // The data the header promises must be in the file: checked before allocating it, so a
+  // corrupt or truncated header is reported as such, not as running out of memory.
   const std::size_t size = item_size(array.type);
-  std::vector<char> raw(array.elements() * size);
+  std::size_t needed = size;
+  for (std::size_t s : array.shape)
+    if (__builtin_mul_overflow(needed, s, &needed)) throw Error(path + ": shape " + shape + " is too large");
+  const auto data_start = in.tellg();
+  in.seekg(0, std::ios::end);
+  const auto available = static_cast<std::size_t>(in.tellg() - data_start);
+  in.seekg(data_start);
+  if (needed > available)
+    throw Error(path + ": the header's shape " + shape + " of " + descr + " needs " + std::to_string(needed) +
+                " bytes of data, the file holds " + std::to_string(available) + " (truncated or corrupt)");
+  std::vector<char> raw(needed);
   if (!in.read(raw.data(), static_cast<std::streamsize>(raw.size())))
     throw Error(path + ": truncated .npy data (expected " + std::to_string(raw.size()) + " bytes)");
   if (fortran && array.shape.size() == 2) {
