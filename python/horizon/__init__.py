@@ -152,14 +152,15 @@ def _search_on_gpu(points, horizon, metric, half, sort_rows, cells_per_horizon):
 
 
 def search(points, horizon, *, backend="auto", metric="l2", half=False, sort_rows=True, threads=0, device=0,
-           cells_per_horizon=1):
+           devices=None, cells_per_horizon=1):
     """The neighbour list of `points` ((N, 2) or (N, 3) array-like, float64 or float32, any
     order): row i holds every j != i with distance(i, j) < horizon.
 
     backend: "auto" (a GPU if there is one, else all cores), "serial", "openmp" or "cuda";
     metric: "l2", "l1" or "linf"; half: keep each pair once, in the row of the smaller id;
     sort_rows: rows ascending by id (False is faster); threads: openmp threads (0: all);
-    device: CUDA device; cells_per_horizon: cell side horizon / k (1-3).
+    device: CUDA device; devices: several CUDA devices, one part of the points each;
+    cells_per_horizon: cell side horizon / k (1-3).
 
     A CUDA array (__cuda_array_interface__: CuPy, PyTorch; float64, C-contiguous) is searched
     where it lies, on its GPU and stream, and gives a DeviceNeighborList (backend, threads and
@@ -176,7 +177,7 @@ def search(points, horizon, *, backend="auto", metric="l2", half=False, sort_row
         array = array.astype(np.float64)
     array = np.ascontiguousarray(array)  # no copy when already C-ordered; AoS is what horizon reads
     owned = _horizon.search(array, float(horizon), metric, bool(half), bool(sort_rows), backend, int(threads),
-                            int(device), int(cells_per_horizon))
+                            int(device), [int(d) for d in (devices or [])], int(cells_per_horizon))
     offsets, indices = owned.offsets, owned.indices
     offsets.flags.writeable = False
     indices.flags.writeable = False

@@ -4,11 +4,13 @@
 // CLI's message.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
 
 #include <cstdint>
 #include <cstring>
 #include <new>
 #include <string>
+#include <vector>
 
 #include "horizon/cuda.hpp"
 #include "horizon/generate.hpp"
@@ -50,7 +52,8 @@ horizon::SearchOptions options_of(double horizon, const std::string& metric, boo
 
 /// points: a C-contiguous (N, 2|3) float64 or float32 array (the Python layer makes it so).
 OwnedList search(py::array points, double horizon, const std::string& metric, bool half, bool sort_rows,
-                 const std::string& backend, int threads, int device, int cells_per_horizon) {
+                 const std::string& backend, int threads, int device, const std::vector<int>& devices,
+                 int cells_per_horizon) {
   const auto rows = static_cast<std::size_t>(points.shape(0));
   const int dims = static_cast<int>(points.shape(1));
   const horizon::PointView view =
@@ -61,6 +64,7 @@ OwnedList search(py::array points, double horizon, const std::string& metric, bo
   options.backend = horizon::parse_backend(backend);
   options.threads = threads;
   options.device = device;
+  options.devices = devices;
   py::gil_scoped_release unlocked;
   return OwnedList{horizon::search(view, options)};
 }
@@ -125,7 +129,7 @@ PYBIND11_MODULE(_horizon, m) {
   m.def("search_device", &search_device, py::arg("pointer"), py::arg("count"), py::arg("dims"), py::arg("stream"),
         py::arg("horizon"), py::arg("metric"), py::arg("half"), py::arg("sort_rows"), py::arg("cells_per_horizon"));
   m.def("search", &search, py::arg("points"), py::arg("horizon"), py::arg("metric"), py::arg("half"),
-        py::arg("sort_rows"), py::arg("backend"), py::arg("threads"), py::arg("device"),
+        py::arg("sort_rows"), py::arg("backend"), py::arg("threads"), py::arg("device"), py::arg("devices"),
         py::arg("cells_per_horizon"));
   m.def("lattice", [](int n, int dims, double side) { return to_array(horizon::lattice(n, dims, side)); });
   m.def("random_cloud", [](std::size_t count, int dims, std::uint64_t seed, double side) {

@@ -73,3 +73,11 @@ def test_a_solver_loop_on_the_gpu():
         points += 0.001 * torch.sin(points + step)
         nl = horizon.search(points, 0.4)
         assert np.array_equal(nl.to_host().indices, horizon.search(points.cpu().numpy(), 0.4).indices)
+
+
+def test_several_devices_from_python():
+    points = horizon.clustered_cloud(200000, clusters=10, sigma=0.7, seed=5)
+    nl = horizon.search(points, 0.15, backend="cuda", devices=[0, 0])  # two parts, one GPU is enough
+    reference = horizon.search(points, 0.15, backend="serial")
+    np.testing.assert_array_equal(nl.offsets, reference.offsets)
+    np.testing.assert_array_equal(nl.indices, reference.indices)

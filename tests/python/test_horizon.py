@@ -111,6 +111,8 @@ def test_clear_errors():
         horizon.search(horizon.random_cloud(10), 0.5, backend="quantum")
     with pytest.raises(ValueError, match="metric"):
         horizon.search(horizon.random_cloud(10), 0.5, metric="cosine")
+    with pytest.raises(ValueError, match="cuda backend"):
+        horizon.search(horizon.random_cloud(10), 0.5, backend="serial", devices=[0, 1])
 
 
 def test_the_gil_is_released_during_a_search():
