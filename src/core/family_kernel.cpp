@@ -115,7 +115,8 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       }
       if constexpr (Fill) {
         if (options.sort_rows && !sorted_stencil) insertion_sort(row, row + found);
-        std::memcpy(pass.indices + offsets[self], row, static_cast<std::size_t>(found) * sizeof(point_id));
+        if (found > 0)  // an empty row buffer may have no storage at all
+          std::memcpy(pass.indices + offsets[self], row, static_cast<std::size_t>(found) * sizeof(point_id));
       } else {
         offsets[self + 1] = found;
       }
