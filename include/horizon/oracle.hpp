@@ -9,7 +9,8 @@
 
 namespace horizon {
 
-/// The whole list (full or half, as options.half says; rows sorted).
+/// The whole list (full or half, as options.half says; rows sorted; with options.queries, only
+/// points 0 .. queries-1 get rows).
 NeighborList brute_force(PointView points, const SearchOptions& options);
 
 /// The sorted family of point i alone (the half-list row when options.half), in O(N).

@@ -32,8 +32,10 @@ NeighborList brute_force(PointView points, const SearchOptions& options) {
   Buffer<std::int64_t> offsets{0};
   Buffer<point_id> indices;
   for (std::size_t i = 0; i < points.size(); ++i) {
-    const auto family = brute_force_family(points, i, options);
-    indices.insert(indices.end(), family.begin(), family.end());
+    if (options.queries == 0 || i < options.queries) {  // the others are references only
+      const auto family = brute_force_family(points, i, options);
+      indices.insert(indices.end(), family.begin(), family.end());
+    }
     offsets.push_back(static_cast<std::int64_t>(indices.size()));
   }
   return NeighborList(std::move(offsets), std::move(indices), options.half);
