@@ -1,5 +1,6 @@
 // The horizon command line: every subcommand, and every error path's exit status and message.
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -149,5 +150,38 @@ TEST_F(CliTest, GpusOptionIsCheckedAndUsed) {
   EXPECT_EQ(cpu.status, 2);
   if (cpu.output.find("does not exist (0 visible)") == std::string::npos)  // a machine with a GPU
     EXPECT_OUTPUT(cpu, "devices are for the cuda backend");
+}
+}  // namespace
+
+namespace {
+// A run killed while it writes the list leaves no file that looks like a complete list (the
+// offsets, renamed into place last, are absent), and a rerun succeeds.
+TEST_F(CliTest, KilledWriteLeavesNoListThatLooksValid) {
+  for (int signal : {SIGTERM, SIGKILL}) {
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      if (::chdir(dir_.c_str()) != 0) ::_exit(127);
+      ::execl(HORIZON_CLI, HORIZON_CLI, "search", "lattice:110", "--horizon", "0.2741", "--out", "big", "--quiet",
+              static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+    bool writing = false;
+    for (int wait = 0; wait < 6000 && !writing; ++wait) {  // up to 30 s for the write to start
+      for (const auto& entry : fs::directory_iterator(dir_))
+        if (entry.path().filename().string().find(".tmp") != std::string::npos) writing = true;
+      if (!writing) ::usleep(5000);
+    }
+    ASSERT_TRUE(writing) << "the write never started";
+    ::kill(pid, signal);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0) continue;  // the write won the race
+    EXPECT_FALSE(exists("big.offsets.npy")) << "signal " << signal;
+    const Result rerun = run("search lattice:110 --horizon 0.2741 --out big --quiet");
+    EXPECT_EQ(rerun.status, 0) << rerun.output;
+    EXPECT_TRUE(exists("big.offsets.npy") && exists("big.indices.npy"));
+    fs::remove(dir_ / "big.offsets.npy");
+    fs::remove(dir_ / "big.indices.npy");
+  }
 }
 }  // namespace

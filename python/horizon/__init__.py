@@ -67,8 +67,9 @@ class NeighborList:
 
     def save(self, prefix):
         """Writes PREFIX.offsets.npy and PREFIX.indices.npy, as the CLI does: each written to a
-        temporary name and renamed, so a failure never leaves a file that looks complete."""
-        for suffix, array in ((".offsets.npy", self.offsets), (".indices.npy", self.indices)):
+        temporary name and renamed, the offsets last, so a failure never leaves a list that
+        looks complete."""
+        for suffix, array in ((".indices.npy", self.indices), (".offsets.npy", self.offsets)):
             target = os.fspath(prefix) + suffix
             temporary = target + ".tmp-" + str(os.getpid())
             try:
