@@ -10,7 +10,7 @@
 // knows the widest stencil from the count pass, and sorts rows after the fill then).
 // Measured against the per-point fill + row sort (Nsight Compute, H100, lattice n = 200,
 // m = 3.015): 14.6 ms against 25.9 ms (warp per point, fused warp sort). For rows of up to
-// 32 the per-point kernels win (point_kernel.cuh): a cell there holds ~3 points.
+// 64, or cells of fewer than 8 points, the per-point kernels win (point_kernel.cuh).
 #include <cub/block/block_radix_sort.cuh>
 
 #include "device_index.cuh"
