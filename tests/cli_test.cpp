@@ -185,3 +185,14 @@ TEST_F(CliTest, KilledWriteLeavesNoListThatLooksValid) {
   }
 }
 }  // namespace
+
+namespace {
+TEST_F(CliTest, MaxMemoryRefusesAListThatDoesNotFit) {
+  const Result small = run("search lattice:30 --horizon 1.005 --max-memory 100K --out list");
+  EXPECT_EQ(small.status, 2);
+  EXPECT_OUTPUT(small, "needs 11.7 MB (2929168 entries) but 102400 bytes are allowed");
+  EXPECT_FALSE(exists("list.offsets.npy"));
+  EXPECT_EQ(run("search lattice:30 --horizon 1.005 --max-memory 1G --quiet").status, 0);
+  EXPECT_OUTPUT(run("search lattice:30 --horizon 1.005 --max-memory lots"), "expected a size");
+}
+}  // namespace

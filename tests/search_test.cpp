@@ -154,3 +154,27 @@ TEST(Errors, EmptyInputGivesAnEmptyList) {
 
 }  // namespace
 }  // namespace horizon
+
+namespace horizon {
+namespace {
+TEST(Memory, ListTooLargeIsRefusedBeforeAllocatingWithItsSizeAndTheWaysOut) {
+  const PointSet points = lattice(30);
+  for (Backend backend : {Backend::serial, Backend::openmp}) {
+    SearchOptions options;
+    options.horizon = 3.015 * 10.0 / 30;
+    options.backend = backend;
+    options.max_memory = 100000;  // bytes
+    try {
+      search(points.view(), options);
+      FAIL() << "a list larger than max_memory was built";
+    } catch (const ListTooLarge& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(e.bytes_needed, static_cast<std::size_t>(lattice_entries(30, 3, 3.015)) * 4) << what;
+      EXPECT_NE(what.find("--half"), std::string::npos) << what;
+    }
+    options.max_memory = std::size_t{1} << 30;
+    EXPECT_EQ(search(points.view(), options).total(), lattice_entries(30, 3, 3.015));
+  }
+}
+}  // namespace
+}  // namespace horizon

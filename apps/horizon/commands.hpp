@@ -16,6 +16,7 @@ struct SearchArgs {
   std::string input, out, backend = "auto", metric = "l2", format = "npy";
   std::string exchange, decomposition = "rcb";  // distributed runs only
   std::string gpus;                             // cuda: "all", a count, or a list of devices
+  std::string max_memory;                       // e.g. 8G, 512M; empty: what is available
   double horizon = 0;
   int threads = 0, cells_per_horizon = 1, device = 0;
   bool half = false, unsorted = false, json = false, quiet = false;

@@ -1,4 +1,6 @@
 // horizon search: read points, build the neighbour list, write it, report timings.
+#include <cctype>
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -132,6 +134,27 @@ std::vector<int> parse_gpus(const std::string& gpus) {
   return devices;
 }
 
+/// --max-memory: bytes, or a number with K, M, G or T (powers of 1024).
+std::size_t parse_memory(const std::string& text) {
+  if (text.empty()) return 0;
+  std::size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  const std::string unit = text.substr(used);
+  const std::string units = "KMGT";
+  double scale = 1;
+  if (unit.size() == 1 && units.find(static_cast<char>(std::toupper(unit[0]))) != std::string::npos)
+    scale = std::pow(1024.0, 1 + static_cast<double>(units.find(static_cast<char>(std::toupper(unit[0])))));
+  else if (!unit.empty())
+    used = 0;
+  if (used == 0 || !(value > 0)) throw Error("--max-memory " + text + ": expected a size such as 512M or 8G");
+  return static_cast<std::size_t>(value * scale);
+}
+
 SearchOptions search_options(const SearchArgs& args) {
   SearchOptions options;
   options.horizon = args.horizon;
@@ -143,6 +166,7 @@ SearchOptions search_options(const SearchArgs& args) {
   options.threads = args.threads;
   options.device = args.device;
   options.devices = parse_gpus(args.gpus);
+  options.max_memory = parse_memory(args.max_memory);
   return options;
 }
 
@@ -162,6 +186,7 @@ void add_search(CLI::App& app) {
       ->check(CLI::IsMember({"auto", "serial", "openmp", "cuda"}));
   cmd->add_option("--threads", args->threads, "openmp threads (0: all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--device", args->device, "cuda device")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--max-memory", args->max_memory, "most host memory the list may take, e.g. 8G (default: what is available)");
   cmd->add_option("--gpus", args->gpus, "cuda: all, a count N, or devices 0,1,...: one part of the points per GPU");
   cmd->add_option("--metric", args->metric, "l2, l1 or linf")->check(CLI::IsMember({"l2", "l1", "linf"}));
   cmd->add_option("--cells-per-horizon", args->cells_per_horizon, "k: cell side horizon/k")

@@ -1,6 +1,7 @@
 #pragma once
 /// \file error.hpp
 /// The one exception type horizon throws for bad input and failed resources.
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 
@@ -11,6 +12,15 @@ namespace horizon {
 class Error : public std::runtime_error {
 public:
   using std::runtime_error::runtime_error;
+};
+
+/// Thrown before the list is allocated when it would not fit in host memory (the memory
+/// available, or SearchOptions::max_memory); the message gives the size and the ways out.
+class ListTooLarge : public Error {
+public:
+  ListTooLarge(const std::string& what, std::size_t needed, std::size_t available)
+      : Error(what), bytes_needed(needed), bytes_available(available) {}
+  std::size_t bytes_needed, bytes_available;
 };
 
 }  // namespace horizon

@@ -38,6 +38,9 @@ struct SearchOptions {
   /// rows. The distributed layer puts its owned points first and its ghosts after.
   std::size_t queries = 0;
   std::int64_t gpu_batch_entries = 0; ///< cuda host API: most list entries per batch (0: as fit)
+  /// Host memory the list may take, in bytes (0: what the system reports available). Checked
+  /// once the count pass knows the list's size, before it is allocated: ListTooLarge.
+  std::size_t max_memory = 0;
   /// cuda: the GPUs of one search (empty: `device` alone). With several, the points are cut
   /// into as many parts of equal point count (recursive coordinate bisection), each searched
   /// with its horizon-wide halo on its own GPU and host thread, the rows assembled in input order.

@@ -97,6 +97,8 @@ PYBIND11_MODULE(_horizon, m) {
       if (error) std::rethrow_exception(error);
     } catch (const horizon::DeviceOutOfMemory& e) {
       PyErr_SetString(PyExc_MemoryError, e.what());
+    } catch (const horizon::ListTooLarge& e) {
+      PyErr_SetString(PyExc_MemoryError, e.what());
     } catch (const horizon::Error& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const std::bad_alloc&) {

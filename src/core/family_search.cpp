@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "memory_check.hpp"
 #include "parallel_scan.hpp"
 
 namespace horizon::detail {
@@ -43,6 +44,7 @@ NeighborList search_families(const CellIndex& index, const SearchOptions& option
   for (std::int64_t r = 0; r < run_count; ++r) count_families(pass, runs[static_cast<std::size_t>(r)]);
 
   inclusive_scan(offsets.data(), offsets.size(), threads);
+  check_list_fits(offsets.back(), options);
   Buffer<point_id> indices(static_cast<std::size_t>(offsets.back()));
   pass.indices = indices.data();
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)

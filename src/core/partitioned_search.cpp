@@ -9,6 +9,7 @@
 
 #include "horizon/decomposition.hpp"
 #include "horizon/grid.hpp"
+#include "memory_check.hpp"
 #include "parallel_scan.hpp"
 
 namespace horizon::detail {
@@ -164,6 +165,7 @@ NeighborList search_parts(PointView points, const SearchOptions& options,
       offsets[static_cast<std::size_t>(part.owned[r]) + 1] = kept(part.list, static_cast<std::size_t>(r), part.global, options.half);
   }
   inclusive_scan(offsets.data() + 1, n, omp_get_max_threads());
+  check_list_fits(offsets[n], options);
   Buffer<point_id> indices(static_cast<std::size_t>(offsets[n]));
   for (Part& part : parts) {
     const auto rows = static_cast<std::int64_t>(part.owned.size());

@@ -17,6 +17,7 @@
 #include <sstream>
 #include <type_traits>
 
+#include "../../core/memory_check.hpp"
 #include "../backends.hpp"
 #include "cell_kernel.cuh"
 #include "device_index.cuh"
@@ -263,6 +264,7 @@ NeighborList search_cuda(PointView points, const SearchOptions& options, SearchS
   auto copy_start = std::chrono::steady_clock::now();
   Buffer<std::int64_t> host_offsets(n + 1);
   copy_to_host(host_offsets.data(), counts.offsets.get(), counts.offsets.bytes(), stream);
+  check_list_fits(counts.total, options);
   Buffer<point_id> indices(static_cast<std::size_t>(counts.total));
   copy_seconds += seconds_since(copy_start);
 

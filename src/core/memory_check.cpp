@@ -1,0 +1,46 @@
+#include "memory_check.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "horizon/error.hpp"
+
+namespace horizon::detail {
+namespace {
+
+/// MemAvailable from /proc/meminfo, in bytes (0 when it cannot be read).
+std::size_t memory_available() {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  std::size_t kib = 0;
+  std::string unit;
+  while (meminfo >> key >> kib >> unit)
+    if (key == "MemAvailable:") return kib * 1024;
+  return 0;
+}
+
+std::string size_text(std::size_t bytes) {
+  char text[32];
+  const double b = static_cast<double>(bytes);
+  if (b >= 1e9) std::snprintf(text, sizeof(text), "%.2f GB", b / 1e9);
+  else if (b >= 1e6) std::snprintf(text, sizeof(text), "%.1f MB", b / 1e6);
+  else std::snprintf(text, sizeof(text), "%zu bytes", bytes);
+  return text;
+}
+
+}  // namespace
+
+void check_list_fits(std::int64_t entries, const SearchOptions& options) {
+  const std::size_t needed = static_cast<std::size_t>(entries) * sizeof(point_id);
+  const std::size_t limit = options.max_memory ? options.max_memory : memory_available();
+  if (limit == 0 || needed <= limit) return;
+  std::string what = "the neighbour list needs " + size_text(needed) + " (" + std::to_string(entries) +
+                     " entries) but " + size_text(limit) +
+                     (options.max_memory ? " are allowed (max memory)" : " of memory are available") + "; ";
+  what += options.half ? "a smaller horizon, or the distributed search over more nodes (mpirun), would fit"
+                       : "a half list (--half) needs half of it; or a smaller horizon, or more nodes (mpirun)";
+  throw ListTooLarge(what, needed, limit);
+}
+
+}  // namespace horizon::detail
