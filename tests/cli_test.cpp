@@ -39,6 +39,12 @@ protected:
   }
   void write(const std::string& name, const std::string& text) const { std::ofstream(dir_ / name) << text; }
   bool exists(const std::string& name) const { return fs::exists(dir_ / name); }
+  /// The command exits 2 with one clear message containing `message`.
+  void expect_refused(const std::string& arguments, const std::string& message) const {
+    const Result result = run(arguments);
+    EXPECT_EQ(result.status, 2) << arguments << "\n" << result.output;
+    EXPECT_NE(result.output.find(message), std::string::npos) << arguments << "\n" << result.output;
+  }
 
   fs::path dir_;
 };
@@ -114,11 +120,7 @@ TEST_F(CliTest, BadInputExitsTwoWithOneClearMessage) {
       {"verify good.csv missing --horizon 1", "missing.offsets.npy: cannot open"},
       {"search lattice:0 --horizon 1", "expected lattice:N"},
   };
-  for (const auto& [arguments, message] : cases) {
-    const Result result = run(arguments);
-    EXPECT_EQ(result.status, 2) << arguments << "\n" << result.output;
-    EXPECT_OUTPUT(result, message);
-  }
+  for (const auto& [arguments, message] : cases) expect_refused(arguments, message);
   EXPECT_FALSE(exists("nowhere"));
 }
 
@@ -136,24 +138,15 @@ TEST_F(CliTest, FailedWriteLeavesNoFileThatLooksValid) {
   fs::permissions(dir_ / "locked", fs::perms::owner_all);
 }
 
-}  // namespace
-
-namespace {
 TEST_F(CliTest, GpusOptionIsCheckedAndUsed) {
-  const Result bad = run("search lattice:5 --horizon 2.5 --gpus 0,x");
-  EXPECT_EQ(bad.status, 2);
-  EXPECT_OUTPUT(bad, "expected all, a count, or a list");
-  const Result many = run("search lattice:5 --horizon 2.5 --backend cuda --gpus 64");
-  EXPECT_EQ(many.status, 2);
-  EXPECT_OUTPUT(many, "does not exist");
+  expect_refused("search lattice:5 --horizon 2.5 --gpus 0,x", "expected all, a count, or a list");
+  expect_refused("search lattice:5 --horizon 2.5 --backend cuda --gpus 64", "does not exist");
   const Result cpu = run("search lattice:5 --horizon 2.5 --backend serial --gpus 1");
   EXPECT_EQ(cpu.status, 2);
   if (cpu.output.find("does not exist (0 visible)") == std::string::npos)  // a machine with a GPU
     EXPECT_OUTPUT(cpu, "devices are for the cuda backend");
 }
-}  // namespace
 
-namespace {
 // A run killed while it writes the list leaves no file that looks like a complete list (the
 // offsets, renamed into place last, are absent), and a rerun succeeds.
 TEST_F(CliTest, KilledWriteLeavesNoListThatLooksValid) {
@@ -184,15 +177,13 @@ TEST_F(CliTest, KilledWriteLeavesNoListThatLooksValid) {
     fs::remove(dir_ / "big.indices.npy");
   }
 }
-}  // namespace
 
-namespace {
 TEST_F(CliTest, MaxMemoryRefusesAListThatDoesNotFit) {
-  const Result small = run("search lattice:30 --horizon 1.005 --max-memory 100K --out list");
-  EXPECT_EQ(small.status, 2);
-  EXPECT_OUTPUT(small, "needs 11.7 MB (2929168 entries) but 102400 bytes are allowed");
+  expect_refused("search lattice:30 --horizon 1.005 --max-memory 100K --out list",
+                 "needs 11.7 MB (2929168 entries) but 102400 bytes are allowed");
   EXPECT_FALSE(exists("list.offsets.npy"));
   EXPECT_EQ(run("search lattice:30 --horizon 1.005 --max-memory 1G --quiet").status, 0);
-  EXPECT_OUTPUT(run("search lattice:30 --horizon 1.005 --max-memory lots"), "expected a size");
+  expect_refused("search lattice:30 --horizon 1.005 --max-memory lots", "expected a size");
 }
+
 }  // namespace

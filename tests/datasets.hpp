@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "horizon/generate.hpp"
+#include "horizon/search.hpp"
 
 namespace horizon::testing {
 
@@ -15,6 +16,18 @@ struct Dataset {
   PointSet points;
   double horizon;
 };
+
+/// The options of a search of `data` (serial unless told).
+inline SearchOptions options_for(const Dataset& data, Metric metric, int k, bool half,
+                                 Backend backend = Backend::serial) {
+  SearchOptions options;
+  options.horizon = data.horizon;
+  options.metric = metric;
+  options.cells_per_horizon = k;
+  options.half = half;
+  options.backend = backend;
+  return options;
+}
 
 inline PointSet integer_cloud(std::size_t count, int dims, int side, std::uint64_t seed) {
   std::mt19937_64 rng(seed);

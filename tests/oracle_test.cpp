@@ -30,11 +30,7 @@ const NeighborList& oracle(const Dataset& data, Metric metric, bool half) {
   const auto key = std::make_tuple(data.name, data.points.dims, metric, half);
   auto it = cache.find(key);
   if (it == cache.end()) {
-    SearchOptions options;
-    options.horizon = data.horizon;
-    options.metric = metric;
-    options.half = half;
-    it = cache.emplace(key, brute_force(data.points.view(), options)).first;
+    it = cache.emplace(key, brute_force(data.points.view(), options_for(data, metric, 1, half))).first;
   }
   return it->second;
 }
@@ -44,13 +40,7 @@ TEST_P(OracleTest, SameListAsBruteForce) {
   require(backend);
   if (::testing::Test::IsSkipped() || ::testing::Test::HasFailure()) return;
   for (const Dataset& data : datasets(dims)) {
-    SearchOptions options;
-    options.horizon = data.horizon;
-    options.metric = metric;
-    options.cells_per_horizon = k;
-    options.half = half;
-    options.backend = backend;
-    const NeighborList list = search(data.points.view(), options);
+    const NeighborList list = search(data.points.view(), options_for(data, metric, k, half, backend));
     const NeighborList& expected = oracle(data, metric, half);
     ASSERT_EQ(list.size(), expected.size()) << data.name;
     EXPECT_EQ(list.offsets(), expected.offsets()) << data.name;

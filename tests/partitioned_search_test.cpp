@@ -14,22 +14,13 @@
 namespace horizon::testing {
 namespace {
 
-SearchOptions base(const Dataset& data, Metric metric, bool half) {
-  SearchOptions options;
-  options.horizon = data.horizon;
-  options.metric = metric;
-  options.half = half;
-  options.backend = Backend::serial;
-  return options;
-}
-
 TEST(PartitionedSearch, AnyPartCountGivesTheSerialList) {
   for (int dims : {2, 3})
     for (const Dataset& data : datasets(dims))
       for (Metric metric : {Metric::euclidean, Metric::chebyshev})
         for (bool half : {false, true})
           for (int parts : {1, 2, 3, 5}) {
-            const SearchOptions options = base(data, metric, half);
+            const SearchOptions options = options_for(data, metric, 1, half);
             std::vector<SearchOptions> per_part(static_cast<std::size_t>(parts), options);
             per_part.back().backend = Backend::openmp;
             SearchStats stats;

@@ -28,13 +28,8 @@ TEST(SimdTargets, EveryTargetThisCpuRunsMatchesBruteForce) {
           for (int k : {1, 2})
             for (bool half : {false, true})
               for (bool sorted : {true, false}) {
-                SearchOptions options;
-                options.horizon = data.horizon;
-                options.metric = metric;
-                options.cells_per_horizon = k;
-                options.half = half;
+                SearchOptions options = options_for(data, metric, k, half);
                 options.sort_rows = sorted;
-                options.backend = Backend::serial;
                 NeighborList list = search(data.points.view(), options);
                 const NeighborList expected = brute_force(data.points.view(), options);
                 const std::string where = std::string(hwy::TargetName(target)) + " " + data.name + " " +
