@@ -74,7 +74,7 @@ PassArgs pass_args(const SearchOptions& o, std::int64_t n) {
 struct Counts {
   DeviceArray<std::int64_t> offsets;
   std::int64_t total = 0, longest = 0, widest = 0;  // entries, longest row, largest stencil
-  std::int64_t points = 0, cells = 0;                // points, occupied cells
+  std::int64_t cells = 0;                            // occupied cells
 };
 
 /// Counts each family, then an inclusive scan into offsets[1..n]; one synchronisation, to
@@ -109,7 +109,7 @@ Counts count_offsets(const DeviceIndex& index, const SearchOptions& options, std
   std::int64_t host[4];
   HORIZON_CUDA_CHECK(cudaMemcpyAsync(host, summary.get(), sizeof(host), cudaMemcpyDeviceToHost, stream));
   HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
-  return Counts{std::move(offsets), host[0], host[1], host[2], index.size(), host[3]};
+  return Counts{std::move(offsets), host[0], host[1], host[2], host[3]};
 }
 
 struct MinusBase {
@@ -140,7 +140,8 @@ constexpr std::int64_t cell_fill_min_points = 8;
 
 Fill fill_kind(const Counts& counts) {
   if (counts.longest <= staged_row) return Fill::short_rows;
-  if (counts.widest <= Stage<wide_stage>::capacity && counts.points >= cell_fill_min_points * counts.cells)
+  const auto points = static_cast<std::int64_t>(counts.offsets.size()) - 1;
+  if (counts.widest <= Stage<wide_stage>::capacity && points >= cell_fill_min_points * counts.cells)
     return Fill::per_cell;
   return Fill::per_point;
 }
