@@ -14,7 +14,7 @@ void add_verify(CLI::App& app);
 
 struct SearchArgs {
   std::string input, out, backend = "auto", metric = "l2", format = "npy";
-  std::string exchange, decomposition = "rcb";  // distributed runs only
+  std::string exchange, decomposition = "rcb", writer = "auto";  // distributed runs only
   std::string gpus;                             // cuda: "all", a count, or a list of devices
   std::string max_memory;                       // e.g. 8G, 512M; empty: what is available
   double horizon = 0;

@@ -1,7 +1,7 @@
 // horizon search under mpirun: every rank reads the input, keeps its block (thesis, halo) or
-// everything (overlap), and the rows are gathered by rank to rank 0, which writes the same
-// files as a serial run. A gather, not MPI-IO: the writer stays the one atomic
-// write-then-rename path, and rank 0 needs the memory of the whole list, as a serial run does.
+// everything (overlap), and the files of a serial run are written either by rank 0 after a
+// gather (it then needs the memory of the whole list) or by every rank at once through MPI-IO
+// (write_rows_parallel): --writer, by default the parallel one for large lists.
 #include <mpi.h>
 
 #include <cstdlib>
@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "horizon/cuda.hpp"
 #include "horizon/distributed.hpp"
+#include "horizon/error.hpp"
 #include "horizon/io.hpp"
 #include "horizon/stopwatch.hpp"
 
@@ -39,6 +40,17 @@ void bind_rank_to_gpu(SearchOptions& options) {
   for (int d = 0; devices.empty() && d < cuda_device_count(); ++d) devices.push_back(d);
   if (!devices.empty()) options.device = devices[static_cast<std::size_t>(local) % devices.size()];
   options.devices.clear();
+}
+
+/// The writer for a list of `entries` (the same on every rank).
+bool write_in_parallel(const SearchArgs& args, std::int64_t entries) {
+  if (args.format == "csv") {
+    if (args.writer == "parallel") throw Error("--writer parallel writes .npy files only (not --format csv)");
+    return false;
+  }
+  // Small lists: one gather and one sequential write cost less than the collective file setup.
+  constexpr std::int64_t parallel_from = std::int64_t{1} << 24;
+  return args.writer == "parallel" || (args.writer == "auto" && entries >= parallel_from);
 }
 
 void run_distributed(const SearchArgs& args) {
@@ -76,8 +88,11 @@ void run_distributed(const SearchArgs& args) {
   std::string written;
   std::int64_t total = 0;
   const std::int64_t mine = rows.rows.total();
-  MPI_Reduce(&mine, &total, 1, MPI_INT64_T, MPI_SUM, 0, MPI_COMM_WORLD);
-  if (!args.out.empty()) {
+  MPI_Allreduce(&mine, &total, 1, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
+  const bool parallel = write_in_parallel(args, total);
+  if (!args.out.empty() && parallel) {
+    written = write_rows_parallel(MPI_COMM_WORLD, rows, n, args.out);
+  } else if (!args.out.empty()) {
     const NeighborList list = gather_rows(MPI_COMM_WORLD, rows, n, options.search.half);
     stats.gather = clock.lap();
     if (rank == 0) written = write_neighbor_list(args.out, list, args.format == "csv" ? ListFormat::csv : ListFormat::npy);
@@ -91,6 +106,7 @@ void run_distributed(const SearchArgs& args) {
         {"cells_per_horizon", args.cells_per_horizon}, {"half", args.half}, {"neighbors", total},
         {"backend", args.backend}, {"threads", args.threads}, {"ranks", size},
         {"exchange", exchange_name(options.exchange)}, {"decomposition", args.decomposition},
+        {"writer", args.out.empty() ? "none" : parallel ? "parallel" : "gather"},
         {"seconds",
          {{"read", read_seconds}, {"preprocess", stats.preprocess}, {"decompose", stats.decompose},
           {"communicate", stats.communicate}, {"search", stats.search}, {"gather", stats.gather},

@@ -58,12 +58,18 @@ struct MpiSession {
     if (active) MPI_Comm_size(MPI_COMM_WORLD, &size);
     if (size > 1) MPI_Abort(MPI_COMM_WORLD, status);
   }
+  int rank() const {
+    int rank = 0;
+    if (active) MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    return rank;
+  }
   bool active = false;
 };
 #else
 struct MpiSession {
   MpiSession(int&, char**&) {}
   void abort(int) const {}
+  int rank() const { return 0; }
 };
 #endif
 
@@ -87,6 +93,9 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const horizon::cli::VerifyFailed&) {
     return 1;
+  } catch (const horizon::CollectiveError& e) {  // every rank has it: one message, no abort
+    if (mpi.rank() == 0) std::cerr << "horizon: error: " << e.what() << "\n";
+    return 2;
   } catch (const horizon::Error& e) {
     std::cerr << "horizon: error: " << e.what() << "\n";
     mpi.abort(2);

@@ -74,7 +74,8 @@ void run_search(const SearchArgs& args) {
       double most_points = 0, most_entries = 0;
       for (const PartStats& part : stats.parts) {
         parts.push_back({{"device", part.device}, {"points", part.owned}, {"halo", part.halo},
-                         {"entries", part.entries}, {"seconds", part.seconds}});
+                         {"entries", part.entries}, {"seconds", part.seconds},
+                         {"build_seconds", part.build_seconds}});
         most_points = std::max(most_points, static_cast<double>(part.owned));
         most_entries = std::max(most_entries, static_cast<double>(part.entries));
       }
@@ -202,6 +203,10 @@ void add_search(CLI::App& app) {
       ->check(CLI::IsMember({"thesis", "halo", "overlap"}));
   cmd->add_option("--decomposition", args->decomposition, "under mpirun: rcb or brick")
       ->check(CLI::IsMember({"rcb", "brick"}));
+  cmd->add_option("--writer", args->writer,
+                  "under mpirun: gather (rank 0 writes), parallel (every rank writes its rows, MPI-IO; .npy "
+                  "only) or auto")
+      ->check(CLI::IsMember({"auto", "gather", "parallel"}));
 #endif
   cmd->callback([args] { run_search(*args); });
 }

@@ -6,6 +6,7 @@ set -e
 mkdir -p /opt/deps
 for deb in .deps/*.deb; do dpkg -x "$deb" /opt/deps; done
 export LD_LIBRARY_PATH=/opt/deps/usr/lib/x86_64-linux-gnu:${LD_LIBRARY_PATH:-}
+export CMAKE_PREFIX_PATH=/opt/deps/usr  # also for the nested CMake of pip install
 export BUILD=${BUILD:-build-gpu}
 cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DHORIZON_CUDA=on \
   -DCMAKE_PREFIX_PATH=/opt/deps/usr -DCMAKE_CUDA_ARCHITECTURES=90 ${CMAKE_ARGS:-} > "$BUILD.configure.log" 2>&1 \

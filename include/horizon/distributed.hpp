@@ -60,4 +60,11 @@ OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<
 NeighborList gather_rows(MPI_Comm comm, const OwnedRows& owned, std::size_t global_count, bool half,
                          int root = 0);
 
+/// Collective: writes PREFIX.indices.npy and PREFIX.offsets.npy, byte for byte the files of
+/// write_neighbor_list(prefix, gather_rows(...)), each rank writing its own rows at their offsets
+/// through MPI-IO (no rank holds the whole list). Under temporary names, renamed once every
+/// rank has written; throws horizon::Error on every rank when any failed. Returns the paths.
+std::string write_rows_parallel(MPI_Comm comm, const OwnedRows& owned, std::size_t global_count,
+                                const std::string& prefix);
+
 }  // namespace horizon

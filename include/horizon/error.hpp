@@ -23,4 +23,11 @@ public:
   std::size_t bytes_needed, bytes_available;
 };
 
+/// Thrown alike on every rank of a collective operation (the distributed writer) once the ranks
+/// agreed that one of them failed: no rank is left waiting, so no abort is needed.
+class CollectiveError : public Error {
+public:
+  using Error::Error;
+};
+
 }  // namespace horizon

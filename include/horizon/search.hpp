@@ -53,6 +53,7 @@ struct PartStats {
   std::size_t owned = 0, halo = 0;  ///< points whose rows it built; points it read as references
   std::int64_t entries = 0;         ///< entries of its rows
   double seconds = 0;               ///< its search (upload, build, copy back), on its own thread
+  double build_seconds = 0;         ///< of which the build itself (GPU: kernels; CPU: grid + search)
 };
 
 /// Seconds spent in each phase, and what ran.

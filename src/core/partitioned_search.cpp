@@ -77,7 +77,7 @@ void assign(PointView points, const Decomposition& d, double reach, std::vector<
 }
 
 /// Searches a part: owned points first, then its halo, as references only.
-void search_part(PointView points, Part& part, const SearchOptions& options, const SearchOptions& part_options) {
+void search_part(PointView points, Part& part, const SearchOptions& part_options) {
   const auto start = std::chrono::steady_clock::now();
   const int dims = points.dims();
   const std::size_t owned = part.owned.size(), local_count = owned + part.halo.size();
@@ -96,7 +96,10 @@ void search_part(PointView points, Part& part, const SearchOptions& options, con
     o.half = false;
     o.queries = owned;
     o.devices.clear();
-    part.list = search(local.view(), o);
+    SearchStats stats;
+    part.list = search(local.view(), o, &stats);
+    part.stats.build_seconds =
+        stats.backend == Backend::cuda ? stats.kernel_seconds : stats.grid_seconds + stats.search_seconds;
   }
   part.stats.device = part_options.device;
   part.stats.owned = owned;
@@ -143,7 +146,7 @@ NeighborList search_parts(PointView points, const SearchOptions& options,
   for (int p = 0; p < count; ++p)
     threads.emplace_back([&, p] {
       try {
-        search_part(points, parts[p], options, part_options[p]);
+        search_part(points, parts[p], part_options[p]);
       } catch (...) {
         failures[p] = std::current_exception();
       }

@@ -97,8 +97,7 @@ NpyArray read_npy(const std::string& path) {
   return array;
 }
 
-void write_npy(const std::string& path, const std::string& type,
-               const std::vector<std::size_t>& shape, const void* data) {
+std::string npy_header(const std::string& type, const std::vector<std::size_t>& shape) {
   std::string dims;
   for (std::size_t s : shape) dims += std::to_string(s) + ", ";
   if (shape.size() > 1) dims.resize(dims.size() - 2);
@@ -107,14 +106,15 @@ void write_npy(const std::string& path, const std::string& type,
   const std::size_t total = 10 + header.size() + 1;
   header.append((64 - total % 64) % 64, ' ');
   header += '\n';
-  const std::uint16_t length = static_cast<std::uint16_t>(header.size());
+  const auto length = static_cast<std::uint16_t>(header.size());
+  return std::string("\x93NUMPY\x01\x00", 8) + static_cast<char>(length & 0xff) + static_cast<char>(length >> 8) +
+         header;
+}
 
+void write_npy(const std::string& path, const std::string& type,
+               const std::vector<std::size_t>& shape, const void* data) {
   AtomicFile file(path);
-  file.write("\x93NUMPY\x01\x00", 8);
-  const unsigned char le[2] = {static_cast<unsigned char>(length & 0xff),
-                               static_cast<unsigned char>(length >> 8)};
-  file.write(le, 2);
-  file.write(header);
+  file.write(npy_header(type, shape));
   std::size_t elements = 1;
   for (std::size_t s : shape) elements *= s;
   file.write(data, elements * item_size(type));

@@ -17,6 +17,9 @@ struct NpyArray {
 /// unsupported dtype, or too few bytes.
 NpyArray read_npy(const std::string& path);
 
+/// The bytes before the data of a version 1.0 .npy file of this dtype and shape (a multiple of 64).
+std::string npy_header(const std::string& type, const std::vector<std::size_t>& shape);
+
 /// Writes `data` (C order) under a temporary name, then renames it to `path`.
 void write_npy(const std::string& path, const std::string& type,
                const std::vector<std::size_t>& shape, const void* data);
