@@ -15,7 +15,7 @@ for exchange in thesis halo overlap; do
     cmp serial.indices.npy "$exchange.indices.npy"
   done
 done
-# The parallel writer (every rank writes its rows through MPI-IO) against the serial files, byte
+# The parallel writer (every rank writes its rows at their offsets) against the serial files, byte
 # for byte, at 1-4 and 7 ranks; full and half lists; and a 5-point input where most ranks own nothing.
 "$horizon" search points.npy --horizon 0.25 --backend serial --half --out serial_half --quiet
 printf '0 0 0\n1 0 0\n0 1 0\n5 5 5\n5 5 5.5\n' > tiny.xyz

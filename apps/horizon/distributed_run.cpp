@@ -1,6 +1,6 @@
 // horizon search under mpirun: every rank reads the input, keeps its block (thesis, halo) or
 // everything (overlap), and the files of a serial run are written either by rank 0 after a
-// gather (it then needs the memory of the whole list) or by every rank at once through MPI-IO
+// gather (it then needs the memory of the whole list) or by every rank at once, positioned writes into the shared files
 // (write_rows_parallel): --writer, by default the parallel one for large lists.
 #include <mpi.h>
 

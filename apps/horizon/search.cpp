@@ -204,8 +204,8 @@ void add_search(CLI::App& app) {
   cmd->add_option("--decomposition", args->decomposition, "under mpirun: rcb or brick")
       ->check(CLI::IsMember({"rcb", "brick"}));
   cmd->add_option("--writer", args->writer,
-                  "under mpirun: gather (rank 0 writes), parallel (every rank writes its rows, MPI-IO; .npy "
-                  "only) or auto")
+                  "under mpirun: gather (rank 0 writes), parallel (every rank writes its rows into the shared files; "
+                  ".npy only) or auto")
       ->check(CLI::IsMember({"auto", "gather", "parallel"}));
 #endif
   cmd->callback([args] { run_search(*args); });
