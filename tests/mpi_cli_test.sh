@@ -36,6 +36,12 @@ for ranks in 1 2 3 4 7; do
   cmp serial_tiny.offsets.npy parallel_tiny.offsets.npy
   cmp serial_tiny.indices.npy parallel_tiny.indices.npy
 done
+# auto: the gather, unless rank 0 could not hold the list (here: --max-memory below twice its 1.6 MB)
+"$mpiexec" --oversubscribe -np 3 "$horizon" search points.npy --horizon 0.25 --out auto --json --quiet > auto.json
+"$mpiexec" --oversubscribe -np 3 "$horizon" search points.npy --horizon 0.25 --max-memory 2M --out auto_small \
+  --json --quiet > auto_small.json
+grep -q '"writer":"gather"' auto.json && grep -q '"writer":"parallel"' auto_small.json
+cmp serial.indices.npy auto_small.indices.npy && cmp serial.offsets.npy auto_small.offsets.npy
 [ -z "$(ls | grep '\.tmp\.')" ]  # no temporary file left behind
 # A parallel write that cannot happen fails on every rank with one message and leaves nothing.
 set +e

@@ -14,10 +14,12 @@ bin="$1/bin/horizon"; out="$2"; mkdir -p "$out"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 visible=$(nvidia-smi -L | wc -l)
 counts=(); for g in ${GPUS:-1 2 4 8}; do [ "$g" -le "$visible" ] || [ -n "${DEVICES:-}" ] && counts+=("$g"); done
-devices() {  # the --gpus argument for g GPUs: the first g visible, or DEVICES' first g entries
-  if [ -n "${DEVICES:-}" ]; then echo "$DEVICES" | cut -d, -f1-"$1"; else seq -s, 0 $(($1 - 1)); fi
+devices() {  # the GPUs of a run on g GPUs: the first g visible, or DEVICES' first g entries
+  local list; if [ -n "${DEVICES:-}" ]; then list=$(echo "$DEVICES" | cut -d, -f1-"$1"); else list=$(seq -s, 0 $(($1 - 1))); fi
+  if [ "$1" -eq 1 ]; then echo "--device $list"; else echo "--gpus $list"; fi
 }
 record() {  # mode n m g rep json
+  [ -n "$6" ] || { echo "run failed: $1 n=$2 m=$3 gpus=$4" >&2; exit 1; }
   echo "{\"mode\":\"$1\",\"n\":$2,\"m\":$3,\"gpus\":$4,\"rep\":$5,\"result\":$6}" >> "$out/multi_gpu.jsonl"
 }
 for n in ${SIZES:-50 100 150 200 250 300 350 400}; do
@@ -26,7 +28,7 @@ for n in ${SIZES:-50 100 150 200 250 300 350 400}; do
     for g in "${counts[@]}"; do
       for rep in $(seq "${REPS:-2}"); do
         record one-process "$n" "$m" "$g" "$rep" \
-          "$("$bin" search "lattice:$n" --horizon "$h" --backend cuda --gpus "$(devices "$g")" --json --quiet)"
+          "$("$bin" search "lattice:$n" --horizon "$h" --backend cuda $(devices "$g") --json --quiet)"
         [ "$g" -gt 1 ] && record mpi "$n" "$m" "$g" "$rep" \
           "$(mpirun --oversubscribe -np "$g" "$bin" search "lattice:$n" --horizon "$h" \
              --backend cuda --exchange halo --json --quiet)"
@@ -37,7 +39,7 @@ for n in ${SIZES:-50 100 150 200 250 300 350 400}; do
       "$bin" search "lattice:$n" --horizon "$h" --backend cuda --out "$out/one" --quiet
       for g in "${counts[@]}"; do
         [ "$g" -gt 1 ] || continue
-        "$bin" search "lattice:$n" --horizon "$h" --backend cuda --gpus "$(devices "$g")" --out "$out/many" --quiet
+        "$bin" search "lattice:$n" --horizon "$h" --backend cuda $(devices "$g") --out "$out/many" --quiet
         mpirun --oversubscribe -np "$g" "$bin" search "lattice:$n" --horizon "$h" \
           --backend cuda --exchange halo --out "$out/ranks" --quiet
         for f in offsets indices; do

@@ -60,6 +60,11 @@ OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<
 NeighborList gather_rows(MPI_Comm comm, const OwnedRows& owned, std::size_t global_count, bool half,
                          int root = 0);
 
+/// Collective: whether the list gather_rows assembles on `root` (and the rows it receives on
+/// the way) fits in root's memory: SearchOptions::max_memory, else what root's system reports
+/// available. The same answer on every rank.
+bool gather_fits(MPI_Comm comm, std::int64_t entries, const SearchOptions& options, int root = 0);
+
 /// Collective: writes PREFIX.indices.npy and PREFIX.offsets.npy, byte for byte the files of
 /// write_neighbor_list(prefix, gather_rows(...)), each rank writing its own rows at their offsets
 /// with positioned writes (no rank holds the whole list; the directory must be shared by all ranks). Under temporary names, renamed once every

@@ -5,6 +5,7 @@
 #include <limits>
 #include <numeric>
 
+#include "../core/memory_check.hpp"
 #include "../core/partitioned_search.hpp"
 #include "exchange.hpp"
 #include "horizon/distributed.hpp"
@@ -248,6 +249,18 @@ OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<
                               sum[2], fewest, largest, rank.size};
   }
   return out;
+}
+
+bool gather_fits(MPI_Comm comm, std::int64_t entries, const SearchOptions& options, int root) {
+  int rank = 0, fits = 1;
+  MPI_Comm_rank(comm, &rank);
+  if (rank == root) try {
+      detail::check_list_fits(2 * entries, options);  // the list, and the rows received for it
+    } catch (const ListTooLarge&) {
+      fits = 0;
+    }
+  MPI_Bcast(&fits, 1, MPI_INT, root, comm);
+  return fits != 0;
 }
 
 NeighborList gather_rows(MPI_Comm comm, const OwnedRows& owned, std::size_t global_count, bool half, int root) {

@@ -41,6 +41,26 @@ void agree(MPI_Comm comm, const std::string& failure) {
   throw CollectiveError(message);
 }
 
+/// This rank's rows in ascending id order. The ids arrive as a few ascending runs (one per rank
+/// its points came from): the runs are merged, not sorted.
+std::vector<std::size_t> rows_by_id(const std::vector<std::int64_t>& ids) {
+  std::vector<std::uint64_t> keys(ids.size());  // id in the high half, row in the low half
+  std::vector<std::size_t> runs{0};
+  for (std::size_t row = 0; row < ids.size(); ++row) {
+    keys[row] = static_cast<std::uint64_t>(ids[row]) << 32 | row;
+    if (row > 0 && ids[row] < ids[row - 1]) runs.push_back(row);
+  }
+  runs.push_back(ids.size());
+  for (std::size_t width = 1; width + 1 < runs.size(); width *= 2)  // bottom-up pairwise merges
+    for (std::size_t r = 0; r + width + 1 < runs.size(); r += 2 * width)
+      std::inplace_merge(keys.begin() + static_cast<std::ptrdiff_t>(runs[r]),
+                         keys.begin() + static_cast<std::ptrdiff_t>(runs[r + width]),
+                         keys.begin() + static_cast<std::ptrdiff_t>(runs[std::min(r + 2 * width, runs.size() - 1)]));
+  std::vector<std::size_t> rows(ids.size());
+  for (std::size_t k = 0; k < rows.size(); ++k) rows[k] = static_cast<std::size_t>(keys[k] & 0xffffffffu);
+  return rows;
+}
+
 /// The global offset of each of this rank's rows. Row lengths go to the rank that owns their
 /// id's block of [0, n) (rank r: [n r / P, n (r+1) / P)); each block is scanned, the blocks are
 /// scanned across ranks, and the offsets come back. `by_id` lists this rank's rows in id order.
@@ -204,9 +224,7 @@ std::string write_rows_parallel(MPI_Comm comm, const OwnedRows& owned, std::size
   }
   agree(comm, failure);
 
-  std::vector<std::size_t> by_id(owned.ids.size());
-  std::iota(by_id.begin(), by_id.end(), std::size_t{0});
-  std::sort(by_id.begin(), by_id.end(), [&](std::size_t a, std::size_t b) { return owned.ids[a] < owned.ids[b]; });
+  const std::vector<std::size_t> by_id = rows_by_id(owned.ids);
   const Offsets offsets = scan_offsets(comm, owned, by_id, global_count);
   std::int64_t total = 0;
   const std::int64_t mine = owned.rows.total();
