@@ -1,13 +1,13 @@
 // Every backend x metric x dimension x cell size x list kind against the brute-force oracle.
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <map>
 #include <tuple>
 
 #include "datasets.hpp"
 #include "horizon/oracle.hpp"
 #include "horizon/search.hpp"
+#include "require_backend.hpp"
 
 namespace horizon::testing {
 namespace {
@@ -15,15 +15,6 @@ namespace {
 using Case = std::tuple<Backend, Metric, int /*dims*/, int /*k*/, bool /*half*/>;
 
 class OracleTest : public ::testing::TestWithParam<Case> {};
-
-// Skips a backend this build or machine lacks, unless HORIZON_REQUIRE_GPU=1 demands the GPU.
-void require(Backend backend) {
-  if (backend_available(backend)) return;
-  if (backend == Backend::cuda && std::getenv("HORIZON_REQUIRE_GPU") &&
-      std::string(std::getenv("HORIZON_REQUIRE_GPU")) == "1")
-    FAIL() << "HORIZON_REQUIRE_GPU=1 but the cuda backend is not usable";
-  GTEST_SKIP() << "backend " << backend_name(backend) << " is not available here (no GPU)";
-}
 
 const NeighborList& oracle(const Dataset& data, Metric metric, bool half) {
   static std::map<std::tuple<std::string, int, Metric, bool>, NeighborList> cache;

@@ -10,8 +10,11 @@
 namespace horizon {
 
 /// The whole list (full or half, as options.half says; rows sorted; with options.queries, only
-/// points 0 .. queries-1 get rows).
+/// points 0 .. queries-1 get rows; with options.box, the nearest periodic image counts).
 NeighborList brute_force(PointView points, const SearchOptions& options);
+
+/// The families of `queries` among `references` (search's second form).
+NeighborList brute_force(PointView queries, PointView references, const SearchOptions& options);
 
 /// The sorted family of point i alone (the half-list row when options.half), in O(N).
 std::vector<point_id> brute_force_family(PointView points, std::size_t i,

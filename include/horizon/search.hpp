@@ -1,6 +1,7 @@
 #pragma once
 /// \file search.hpp
 /// The entry point: all-pairs fixed-radius neighbour search of one point set against itself.
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -45,6 +46,12 @@ struct SearchOptions {
   /// into as many parts of equal point count (recursive coordinate bisection), each searched
   /// with its horizon-wide halo on its own GPU and host thread, the rows assembled in input order.
   std::vector<int> devices;
+  /// Periodic box (scipy's boxsize): box[a] > 0 makes axis a periodic with period box[a], 0
+  /// leaves it open. Points must lie in [0, box[a]) and the horizon be < box[a] / 2 on every
+  /// periodic axis; the distance is then to the nearest periodic image, each j at most once per
+  /// row. Images are points of their own: image coordinates x_j +- box[a] are rounded to double
+  /// before the pair test, as the oracle does.
+  std::array<double, 3> box{0, 0, 0};
 };
 
 /// One part of a search over several devices: its device, points and time.
@@ -76,5 +83,12 @@ struct SearchStats {
 /// The neighbour list of `points` against themselves. Throws horizon::Error on NaN/Inf
 /// coordinates, a horizon that is not finite and > 0, k outside 1..3, or >= 2^31 points.
 NeighborList search(PointView points, const SearchOptions& options, SearchStats* stats = nullptr);
+
+/// The families of `queries` among `references` (two point sets of the same dimension): row q
+/// holds every reference r with d(q, r) < horizon; nothing is excluded as "self" (a query equal
+/// to a reference finds it). Ids index `references`. Throws for half lists and
+/// SearchOptions::queries, which are about one point set.
+NeighborList search(PointView queries, PointView references, const SearchOptions& options,
+                    SearchStats* stats = nullptr);
 
 }  // namespace horizon

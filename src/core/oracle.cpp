@@ -4,15 +4,34 @@ namespace horizon {
 
 namespace {
 
-bool neighbours(PointView points, std::size_t i, std::size_t j, Metric metric, double threshold) {
-  const double dx = points(i, 0) - points(j, 0);
-  const double dy = points(i, 1) - points(j, 1);
-  const double dz = points.dims() == 3 ? points(i, 2) - points(j, 2) : 0.0;
+double accumulate(Metric metric, double dx, double dy, double dz) {
   switch (metric) {
-    case Metric::euclidean: return metric_accumulate<Metric::euclidean>(dx, dy, dz) < threshold;
-    case Metric::manhattan: return metric_accumulate<Metric::manhattan>(dx, dy, dz) < threshold;
-    case Metric::chebyshev: return metric_accumulate<Metric::chebyshev>(dx, dy, dz) < threshold;
+    case Metric::euclidean: return metric_accumulate<Metric::euclidean>(dx, dy, dz);
+    case Metric::manhattan: return metric_accumulate<Metric::manhattan>(dx, dy, dz);
+    case Metric::chebyshev: return metric_accumulate<Metric::chebyshev>(dx, dy, dz);
   }
+  return 0;
+}
+
+/// Whether point i of `a` and point j of `b` (or, in a periodic box, an image of j: its
+/// coordinates shifted by -L, 0 or +L on each periodic axis, rounded to double) are closer
+/// than the horizon.
+bool neighbours(PointView a, std::size_t i, PointView b, std::size_t j, const SearchOptions& options) {
+  const double threshold = metric_threshold(options.metric, options.horizon);
+  const int dims = a.dims();
+  int reach[3];  // the shifts tried per axis: -1..1 on periodic axes, 0 on open ones
+  for (int axis = 0; axis < 3; ++axis) reach[axis] = axis < dims && options.box[static_cast<std::size_t>(axis)] > 0;
+  for (int sx = -reach[0]; sx <= reach[0]; ++sx)
+    for (int sy = -reach[1]; sy <= reach[1]; ++sy)
+      for (int sz = -reach[2]; sz <= reach[2]; ++sz) {
+        const int shift[3] = {sx, sy, sz};
+        double d[3] = {0, 0, 0};
+        for (int axis = 0; axis < dims; ++axis) {
+          const double image = shift[axis] == 0 ? b(j, axis) : b(j, axis) + shift[axis] * options.box[static_cast<std::size_t>(axis)];
+          d[axis] = a(i, axis) - image;
+        }
+        if (accumulate(options.metric, d[0], d[1], d[2]) < threshold) return true;
+      }
   return false;
 }
 
@@ -20,11 +39,9 @@ bool neighbours(PointView points, std::size_t i, std::size_t j, Metric metric, d
 
 std::vector<point_id> brute_force_family(PointView points, std::size_t i,
                                          const SearchOptions& options) {
-  const double threshold = metric_threshold(options.metric, options.horizon);
   std::vector<point_id> family;
   for (std::size_t j = options.half ? i + 1 : 0; j < points.size(); ++j)
-    if (j != i && neighbours(points, i, j, options.metric, threshold))
-      family.push_back(static_cast<point_id>(j));
+    if (j != i && neighbours(points, i, points, j, options)) family.push_back(static_cast<point_id>(j));
   return family;
 }
 
@@ -39,6 +56,17 @@ NeighborList brute_force(PointView points, const SearchOptions& options) {
     offsets.push_back(static_cast<std::int64_t>(indices.size()));
   }
   return NeighborList(std::move(offsets), std::move(indices), options.half);
+}
+
+NeighborList brute_force(PointView queries, PointView references, const SearchOptions& options) {
+  Buffer<std::int64_t> offsets{0};
+  Buffer<point_id> indices;
+  for (std::size_t q = 0; q < queries.size(); ++q) {
+    for (std::size_t r = 0; r < references.size(); ++r)
+      if (neighbours(queries, q, references, r, options)) indices.push_back(static_cast<point_id>(r));
+    offsets.push_back(static_cast<std::int64_t>(indices.size()));
+  }
+  return NeighborList(std::move(offsets), std::move(indices), false);
 }
 
 }  // namespace horizon

@@ -3,6 +3,7 @@
 #include "../backends/backends.hpp"
 #include "family_search.hpp"
 #include "partitioned_search.hpp"
+#include "reference_search.hpp"
 #include "horizon/error.hpp"
 #include "horizon/grid.hpp"
 
@@ -58,6 +59,7 @@ NeighborList search(PointView points, const SearchOptions& options, SearchStats*
   out.backend = backend;
   if (!options.devices.empty() && backend != Backend::cuda)
     throw Error(std::string("devices are for the cuda backend, not '") + backend_name(backend) + "'");
+  if (detail::is_periodic(options)) return detail::search_periodic(points, options, out);
   if (points.empty()) return NeighborList({0}, {}, options.half);
   if (backend == Backend::cuda && options.devices.size() > 1) {
     std::vector<SearchOptions> per_device;
@@ -82,6 +84,14 @@ NeighborList search(PointView points, const SearchOptions& options, SearchStats*
     case Backend::cuda: return detail::search_cuda(points, options, out);
     default: return detail::search_serial(points, options, out);
   }
+}
+
+NeighborList search(PointView queries, PointView references, const SearchOptions& options, SearchStats* stats) {
+  validate(queries);
+  validate(references);
+  validate_horizon(options.horizon, options.cells_per_horizon);
+  SearchStats local;
+  return detail::search_references(queries, references, options, stats ? *stats : local);
 }
 
 }  // namespace horizon

@@ -1,0 +1,28 @@
+#pragma once
+// Searches whose references are not simply the points themselves: periodic boxes (the points
+// plus their images across the periodic faces) and queries against a separate reference set.
+// Both run any backend on one local point set (queries first, references after, as
+// SearchOptions::queries has it) and map the ids of its rows back.
+#include <vector>
+
+#include "horizon/search.hpp"
+
+namespace horizon::detail {
+
+/// The rows of the first `queries` points of `local` searched with `options` (its box ignored),
+/// each id j mapped to id_of[j] (dropped when < 0; half lists keep id_of[j] > i). Ids j below
+/// `ascending_below` map in ascending order; the rest are sorted and merged in (sort_rows).
+NeighborList search_mapped(PointView local, std::size_t queries, const std::vector<point_id>& id_of,
+                           std::size_t ascending_below, const SearchOptions& options, SearchStats& stats);
+
+/// `points` in the periodic box options.box (validated: clear errors naming the axis or point).
+NeighborList search_periodic(PointView points, const SearchOptions& options, SearchStats& stats);
+
+/// `queries` against `references`, periodic when options.box says so.
+NeighborList search_references(PointView queries, PointView references, const SearchOptions& options,
+                               SearchStats& stats);
+
+/// Whether options.box makes any axis periodic.
+bool is_periodic(const SearchOptions& options);
+
+}  // namespace horizon::detail
