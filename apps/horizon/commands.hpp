@@ -17,6 +17,8 @@ struct SearchArgs {
   std::string exchange, decomposition = "rcb", writer = "auto";  // distributed runs only
   std::string gpus;                             // cuda: "all", a count, or a list of devices
   std::string max_memory;                       // e.g. 8G, 512M; empty: what is available
+  std::string box;                              // periodic box "Lx,Ly[,Lz]", 0: open axis
+  std::string queries;                          // query points; the input is then the references
   double horizon = 0;
   int threads = 0, cells_per_horizon = 1, device = 0;
   bool half = false, unsorted = false, json = false, quiet = false;

@@ -59,6 +59,8 @@ void run_distributed(const SearchArgs& args) {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   check_output(args);
+  if (!args.box.empty() || !args.queries.empty())
+    throw Error("--box and --queries are not supported under mpirun yet: run them without mpirun (one node, any backend)");
   const Progress progress(args.quiet || rank != 0);
   Stopwatch clock;
   const PointSet all = load_input(args.input);

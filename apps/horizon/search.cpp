@@ -1,4 +1,5 @@
 // horizon search: read points, build the neighbour list, write it, report timings.
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <iostream>
@@ -24,13 +25,16 @@ void run_search(const SearchArgs& args) {
   check_output(args);
   Stopwatch clock;
   progress.say("reading " + args.input);
-  const PointSet points = load_input(args.input);
+  const PointSet references = load_input(args.input);
+  const PointSet queries = args.queries.empty() ? PointSet{} : load_input(args.queries);
+  const PointSet& points = args.queries.empty() ? references : queries;  // the rows
   const double read_seconds = clock.lap();
 
   const SearchOptions options = search_options(args);
   progress.say("searching " + std::to_string(points.size()) + " points");
   SearchStats stats;
-  const NeighborList list = search(points.view(), options, &stats);
+  const NeighborList list = args.queries.empty() ? search(references.view(), options, &stats)
+                                                 : search(queries.view(), references.view(), options, &stats);
   clock.lap();
 
   std::string written;
@@ -46,6 +50,7 @@ void run_search(const SearchArgs& args) {
     nlohmann::json report = {
         {"points", points.size()},
         {"dims", points.dims},
+        {"references", references.size()},
         {"horizon", args.horizon},
         {"metric", metric_name(options.metric)},
         {"cells_per_horizon", options.cells_per_horizon},
@@ -135,6 +140,29 @@ std::vector<int> parse_gpus(const std::string& gpus) {
   return devices;
 }
 
+/// --box Lx,Ly[,Lz]: the period of each axis, 0 for an open one.
+std::array<double, 3> parse_box(const std::string& text) {
+  std::array<double, 3> box{0, 0, 0};
+  if (text.empty()) return box;
+  std::size_t axis = 0, from = 0;
+  for (; from <= text.size() && axis < 3; ++axis) {
+    const std::size_t comma = std::min(text.find(',', from), text.size());
+    const std::string field = text.substr(from, comma - from);
+    std::size_t used = 0;
+    try {
+      box[axis] = std::stod(field, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != field.size())
+      throw Error("--box " + text + ": '" + field + "' is not a number (expected Lx,Ly[,Lz], 0 for an open axis)");
+    from = comma + 1;
+  }
+  if (axis < 2 || from <= text.size())
+    throw Error("--box " + text + ": expected two or three periods Lx,Ly[,Lz] (0 for an open axis)");
+  return box;
+}
+
 /// --max-memory: bytes, or a number with K, M, G or T (powers of 1024).
 std::size_t parse_memory(const std::string& text) {
   if (text.empty()) return 0;
@@ -168,13 +196,15 @@ SearchOptions search_options(const SearchArgs& args) {
   options.device = args.device;
   options.devices = parse_gpus(args.gpus);
   options.max_memory = parse_memory(args.max_memory);
+  options.box = parse_box(args.box);
   return options;
 }
 
 void check_output(const SearchArgs& args) {
   for (const char* suffix : {".csv", ".offsets.npy", ".indices.npy"})
-    if (!args.out.empty() && args.out + suffix == args.input)
-      throw Error("--out " + args.out + " would overwrite the input " + args.input);
+    for (const std::string& input : {args.input, args.queries})
+      if (!args.out.empty() && args.out + suffix == input)
+        throw Error("--out " + args.out + " would overwrite the input " + input);
 }
 
 void add_search(CLI::App& app) {
@@ -193,6 +223,10 @@ void add_search(CLI::App& app) {
   cmd->add_option("--cells-per-horizon", args->cells_per_horizon, "k: cell side horizon/k")
       ->check(CLI::IsMember({1, 2, 3}));
   cmd->add_flag("--half", args->half, "each pair once, in the row of the smaller id");
+  cmd->add_option("--box", args->box,
+                  "periodic box Lx,Ly[,Lz] (0: open axis): points in [0, L), nearest-image distance, horizon < L/2");
+  cmd->add_option("--queries", args->queries,
+                  "query points (file or lattice:N): rows are the queries, ids index the input (the references)");
   cmd->add_flag("--unsorted", args->unsorted, "leave each family in search order (faster)");
   cmd->add_option("--out", args->out, "output prefix (PREFIX.offsets.npy + PREFIX.indices.npy, or PREFIX.csv)");
   cmd->add_option("--format", args->format, "npy or csv")->check(CLI::IsMember({"npy", "csv"}));

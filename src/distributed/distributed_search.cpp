@@ -182,6 +182,9 @@ OwnedRows search_owned(std::vector<Packed>& owned, std::vector<Packed>& ghosts, 
 OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<std::int64_t>& ids,
                              std::size_t global_count, const DistributedOptions& options,
                              DistributedStats* stats) {
+  const auto& period = options.search.box;
+  if (period[0] > 0 || period[1] > 0 || period[2] > 0)
+    throw Error("periodic boxes are not supported by the distributed search yet (search on one node)");
   Rank rank{comm, 0, 1};
   MPI_Comm_rank(comm, &rank.id);
   MPI_Comm_size(comm, &rank.size);
