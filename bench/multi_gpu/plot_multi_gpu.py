@@ -20,6 +20,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scaling"))
+from plot_scaling import save  # noqa: E402  (PNG + SVG, as the CPU scaling study)
+
 
 def lattice_entries(n, m):
     """Entries of the full list of the n^3 lattice at horizon m h (sum over offsets |v| < m)."""
@@ -80,12 +83,6 @@ def load(path):
         r["speedup"] = t1 / r["seconds"] if t1 and r["seconds"] else float("nan")
         r["points_per_s"] = r["points"] / r["seconds"] if r["seconds"] else 0
     return rows
-
-
-def save(fig, out, name):
-    for ext in ("png", "svg"):
-        fig.savefig(os.path.join(out, f"{name}.{ext}"), dpi=120, bbox_inches="tight")
-    plt.close(fig)
 
 
 def main():

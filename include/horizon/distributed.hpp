@@ -66,9 +66,10 @@ NeighborList gather_rows(MPI_Comm comm, const OwnedRows& owned, std::size_t glob
 bool gather_fits(MPI_Comm comm, std::int64_t entries, const SearchOptions& options, int root = 0);
 
 /// Collective: writes PREFIX.indices.npy and PREFIX.offsets.npy, byte for byte the files of
-/// write_neighbor_list(prefix, gather_rows(...)), each rank writing its own rows at their offsets
-/// with positioned writes (no rank holds the whole list; the directory must be shared by all ranks). Under temporary names, renamed once every
-/// rank has written; throws horizon::Error on every rank when any failed. Returns the paths.
+/// write_neighbor_list(prefix, gather_rows(...)), each rank writing its own rows at their
+/// offsets with positioned writes (no rank holds the whole list; every rank must see the
+/// directory). Under temporary names, renamed once every rank has written; throws
+/// CollectiveError on every rank when any failed. Returns the paths.
 std::string write_rows_parallel(MPI_Comm comm, const OwnedRows& owned, std::size_t global_count,
                                 const std::string& prefix);
 

@@ -77,11 +77,11 @@ void append_images(PointView points, const SearchOptions& options, PointSet& loc
   }
 }
 
-bool periodic(const SearchOptions& options) {
+}  // namespace
+
+bool is_periodic(const SearchOptions& options) {
   return options.box[0] > 0 || options.box[1] > 0 || options.box[2] > 0;
 }
-
-}  // namespace
 
 NeighborList search_mapped(PointView local, std::size_t queries, const std::vector<point_id>& id_of,
                            std::size_t ascending_below, const SearchOptions& options, SearchStats& stats) {
@@ -124,7 +124,7 @@ NeighborList search_mapped(PointView local, std::size_t queries, const std::vect
 
 NeighborList search_periodic(PointView points, const SearchOptions& options, SearchStats& stats) {
   if (options.queries != 0) throw Error("SearchOptions::queries cannot be combined with a periodic box");
-  Stopwatch clock;  // the search's time covers the images and the mapping too
+  Stopwatch clock;  // the search's time covers the checks, images and mapping too
   validate_box(points, options, "point");
   PointSet local{points.dims(), std::vector<double>(points.size() * static_cast<std::size_t>(points.dims()))};
   copy_points(points, local, 0);
@@ -145,11 +145,11 @@ NeighborList search_references(PointView queries, PointView references, const Se
                 std::to_string(references.dims()) + "-D");
   if (options.half) throw Error("half lists are for one point set, not queries against references");
   if (options.queries != 0) throw Error("SearchOptions::queries is for one point set, not queries against references");
-  if (periodic(options)) {
+  Stopwatch clock;  // the search's time covers the checks, copies, images and mapping too
+  if (is_periodic(options)) {
     validate_box(queries, options, "query point");
     validate_box(references, options, "reference point");
   }
-  Stopwatch clock;  // the search's time covers the copies, images and mapping too
   const std::size_t total = queries.size() + references.size();
   if (total >= static_cast<std::size_t>(std::numeric_limits<point_id>::max()))
     throw Error("queries and references together must be fewer than 2^31 - 1 points");
@@ -160,14 +160,12 @@ NeighborList search_references(PointView queries, PointView references, const Se
   copy_points(references, local, queries.size());
   std::vector<point_id> id_of(total, -1);
   for (std::size_t r = 0; r < references.size(); ++r) id_of[queries.size() + r] = static_cast<point_id>(r);
-  if (periodic(options)) append_images(references, options, local, id_of, 0);
+  if (is_periodic(options)) append_images(references, options, local, id_of, 0);
   if (local.size() >= static_cast<std::size_t>(std::numeric_limits<point_id>::max()))
     throw Error("box: the points and their periodic images exceed 2^31 - 1");
   NeighborList list = search_mapped(local.view(), queries.size(), id_of, total, options, stats);
   stats.search_seconds = clock.lap() - stats.grid_seconds;
   return list;
 }
-
-bool is_periodic(const SearchOptions& options) { return periodic(options); }
 
 }  // namespace horizon::detail
