@@ -9,6 +9,7 @@
 #include "horizon/error.hpp"
 #include "horizon/generate.hpp"
 #include "horizon/grid.hpp"
+#include "horizon/oracle.hpp"
 #include "horizon/search.hpp"
 
 namespace horizon {
@@ -114,6 +115,21 @@ TEST(Options, HalfListHoldsEachPairOnce) {
   EXPECT_EQ(2 * half.total(), full.total());
   for (std::size_t i = 0; i < half.size(); ++i)
     for (point_id j : half.row(i)) EXPECT_GT(j, static_cast<point_id>(i));
+}
+
+TEST(Options, HorizonWhoseSquareUnderflowsMatchesBruteForce) {
+  // δ² = 0 in double: no Euclidean pair passes, not even coincident points; the full-list
+  // kernels that drop `self` after the tests must not drop it then.
+  const PointSet points{3, {0, 0, 0, 0, 0, 0, 1e-171, 0, 0, 5, 5, 5, 5, 5, 5}};
+  for (Backend backend : {Backend::serial, Backend::openmp})
+    for (Metric metric : {Metric::euclidean, Metric::manhattan, Metric::chebyshev})
+      for (bool sorted : {true, false}) {
+        SearchOptions options = options_for(1e-170, backend);
+        options.metric = metric;
+        options.sort_rows = sorted;
+        const NeighborList list = search(points.view(), options);
+        testing::expect_same_families(list, brute_force(points.view(), options));
+      }
 }
 
 TEST(Grid, HugeExtentStaysSparseAndSmall) {

@@ -80,11 +80,15 @@ HWY_INLINE void StoreSelected(DI di, VI ids, unsigned bits, point_id* out) {
   }
 }
 
+/// Which candidates' ids a family excludes: those above `self` (half lists), `self` only, or
+/// none (full lists whose caller removes `self` afterwards, which saves a compare per vector).
+enum class IdTest { above_self, not_self, none };
+
 /// Tests point (px, py, pz) with id `self` against candidates [begin, end) of arrays x, y, z,
-/// ids: a neighbour when within the horizon and not `self` (Half: id above `self`). Returns
+/// ids: a neighbour when within the horizon and passing `Ids`. Returns
 /// their number; Fill also writes their ids to `out` in array order (and up to a vector of junk
 /// after them). Loads may run up to a vector past `end` (the arrays are padded).
-template <Metric M, int D, bool Half, bool Fill, class V, class VI>
+template <Metric M, int D, IdTest Ids, bool Fill, class V, class VI>
 HWY_INLINE std::int64_t TestCandidates(V px, V py, V pz, VI self, V threshold, const double* x,
                                        const double* y, const double* z, const point_id* ids,
                                        std::int64_t begin, std::int64_t end, point_id* out) {
@@ -97,10 +101,11 @@ HWY_INLINE std::int64_t TestCandidates(V px, V py, V pz, VI self, V threshold, c
     const V dy = hn::Sub(py, hn::LoadU(d, y + q));
     const V dz = D == 3 ? hn::Sub(pz, hn::LoadU(d, z + q)) : dx;
     // Masks cannot change lane size: combine the double and id lanes' masks as bits.
-    std::uint8_t near[8], other[8];
+    std::uint8_t near[8], other[8] = {0xff};
     hn::StoreMaskBits(d, hn::Lt(accumulate<M, D>(dx, dy, dz), threshold), near);
     const VI candidate = hn::LoadU(di, ids + q);
-    hn::StoreMaskBits(di, Half ? hn::Gt(candidate, self) : hn::Ne(candidate, self), other);
+    if constexpr (Ids != IdTest::none)
+      hn::StoreMaskBits(di, Ids == IdTest::above_self ? hn::Gt(candidate, self) : hn::Ne(candidate, self), other);
     unsigned keep = static_cast<unsigned>(near[0] & other[0]);
     if (end - q < lanes) keep &= (1u << (end - q)) - 1;
     if constexpr (Fill) StoreSelected(di, candidate, keep, out + found);
@@ -109,7 +114,7 @@ HWY_INLINE std::int64_t TestCandidates(V px, V py, V pz, VI self, V threshold, c
   return found;
 }
 
-template <Metric M, int D, bool Half, bool Fill>
+template <Metric M, int D, IdTest Ids, bool Fill>
 void VisitCells(const FamilyPass& pass, CellRun run) {
   const hn::ScalableTag<double> d;
   const hn::Rebind<point_id, decltype(d)> di;  // one id lane per coordinate lane
@@ -121,7 +126,10 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
   std::int64_t* offsets = pass.offsets;
   const std::size_t queries = options.queries ? options.queries : index.point_count();
   const auto points = static_cast<std::int64_t>(index.point_count());
-  const auto threshold = hn::Set(d, metric_threshold(M, options.horizon));
+  const double limit = metric_threshold(M, options.horizon);
+  const auto threshold = hn::Set(d, limit);
+  // With IdTest::none a family also holds `self` (distance 0), unless the threshold underflowed.
+  const std::int64_t self_found = Ids == IdTest::none && limit > 0 ? 1 : 0;
   std::vector<CellIndex::Range> rows(static_cast<std::size_t>(index.max_stencil_rows()));
   SortedStencil sorted;
   std::vector<point_id> row_buffer;  // a row is written here, then copied to its exact place
@@ -152,19 +160,25 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       point_id* const row = row_buffer.data();  // empty when counting
       std::int64_t found = 0;
       if (sorted_stencil) {
-        found = TestCandidates<M, D, Half, Fill>(px, py, pz, id, threshold, sorted.coords(0), sorted.coords(1),
+        found = TestCandidates<M, D, Ids, Fill>(px, py, pz, id, threshold, sorted.coords(0), sorted.coords(1),
                                                  sorted.coords(2), sorted.ids(), 0, sorted.size(), row);
       } else {
         for (int r = 0; r < row_count; ++r)
-          found += TestCandidates<M, D, Half, Fill>(px, py, pz, id, threshold, x, y, z, order, rows[r].begin,
+          found += TestCandidates<M, D, Ids, Fill>(px, py, pz, id, threshold, x, y, z, order, rows[r].begin,
                                                     rows[r].end, Fill ? row + found : nullptr);
       }
       if constexpr (Fill) {
         if (options.sort_rows && !sorted_stencil) insertion_sort(row, row + found);
-        if (found > 0)  // an empty row buffer may have no storage at all
-          std::memcpy(pass.indices + offsets[self], row, static_cast<std::size_t>(found) * sizeof(point_id));
+        point_id* const place = pass.indices + offsets[self];
+        std::int64_t before = found;  // the row goes to its place around `self`, if present
+        if (self_found) before = std::lower_bound(row, row + found, self) - row;
+        if (before > 0)  // an empty row buffer may have no storage at all
+          std::memcpy(place, row, static_cast<std::size_t>(before) * sizeof(point_id));
+        if (found > before + self_found)
+          std::memcpy(place + before, row + before + self_found,
+                      static_cast<std::size_t>(found - before - self_found) * sizeof(point_id));
       } else {
-        offsets[self + 1] = found;
+        offsets[self + 1] = found - self_found;
       }
     }
   }
@@ -172,10 +186,14 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
 
 template <bool Fill, Metric M, int D>
 void VisitHalf(const FamilyPass& pass, CellRun run) {
+  // Full lists drop `self` after the tests where the row is sorted (or only counted), so its
+  // place is found by a binary search.
   if (pass.options->half)
-    VisitCells<M, D, true, Fill>(pass, run);
+    VisitCells<M, D, IdTest::above_self, Fill>(pass, run);
+  else if (!Fill || pass.options->sort_rows)
+    VisitCells<M, D, IdTest::none, Fill>(pass, run);
   else
-    VisitCells<M, D, false, Fill>(pass, run);
+    VisitCells<M, D, IdTest::not_self, Fill>(pass, run);
 }
 
 template <bool Fill, Metric M>
