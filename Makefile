@@ -6,7 +6,7 @@ JOBS ?= $(shell nproc)
 PACKAGES = build-essential cmake libgtest-dev libbenchmark-dev libcli11-dev libfmt-dev \
            nlohmann-json3-dev libnanoflann-dev libhwy-dev libopenmpi-dev openmpi-bin \
            python3-dev python3-pybind11 pybind11-dev python3-numpy python3-scipy python3-pytest \
-           python3-venv python3-pip python3-matplotlib
+           python3-venv python3-pip python3-matplotlib python3-meshio
 
 .PHONY: deps build run test test-sanitize bench clean
 

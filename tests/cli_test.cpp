@@ -178,6 +178,23 @@ TEST_F(CliTest, KilledWriteLeavesNoListThatLooksValid) {
   }
 }
 
+TEST_F(CliTest, VtkOutputAndItsRefusals) {
+  const Result written = run("search lattice:6 --horizon 2.5 --vtk cloud.vtu --vtk-bonds --json");
+  ASSERT_EQ(written.status, 0) << written.output;
+  EXPECT_OUTPUT(written, "cloud.vtu");
+  std::ifstream file(dir_ / "cloud.vtu", std::ios::binary);
+  std::string head(300, '\0');
+  file.read(head.data(), static_cast<std::streamsize>(head.size()));
+  EXPECT_NE(head.find("<VTKFile type=\"UnstructuredGrid\""), std::string::npos) << head;
+  // 216 vertex cells and the 6^3 lattice's 1,440 pairs at m = 1.5 (2,880 entries / 2).
+  EXPECT_NE(head.find("NumberOfPoints=\"216\" NumberOfCells=\"1656\""), std::string::npos) << head;
+  expect_refused("search lattice:6 --horizon 2.5 --vtk-bonds", "--vtk-bonds needs --vtk");
+  expect_refused("search lattice:6 --horizon 2.5 --vtk missing/cloud.vtu", "does not exist");
+  // lattice 60 at m = 3.015: 1.3e7 pairs, more than --vtk-bonds draws; nothing is left behind.
+  expect_refused("search lattice:60 --horizon 0.5025 --vtk big.vtu --vtk-bonds", "bonds are more than");
+  EXPECT_FALSE(exists("big.vtu"));
+}
+
 TEST_F(CliTest, MaxMemoryRefusesAListThatDoesNotFit) {
   expect_refused("search lattice:30 --horizon 1.005 --max-memory 100K --out list",
                  "needs 11.7 MB (2929168 entries) but 102400 bytes are allowed");

@@ -19,9 +19,10 @@ struct SearchArgs {
   std::string max_memory;                       // e.g. 8G, 512M; empty: what is available
   std::string box;                              // periodic box "Lx,Ly[,Lz]", 0: open axis
   std::string queries;                          // query points; the input is then the references
+  std::string vtk;                              // ParaView file (.vtu) of the points
   double horizon = 0;
   int threads = 0, cells_per_horizon = 1, device = 0;
-  bool half = false, unsorted = false, json = false, quiet = false;
+  bool half = false, unsorted = false, json = false, quiet = false, vtk_bonds = false;
 };
 SearchOptions search_options(const SearchArgs& args);
 /// Throws when an output would overwrite the input.

@@ -42,6 +42,11 @@ void run_search(const SearchArgs& args) {
     progress.say("writing " + std::to_string(list.total()) + " neighbours");
     written = write_neighbor_list(args.out, list, args.format == "csv" ? ListFormat::csv : ListFormat::npy);
   }
+  if (!args.vtk.empty()) {
+    progress.say("writing " + args.vtk);
+    write_vtk(args.vtk, points, list, args.vtk_bonds);
+    written += (written.empty() ? "" : ",") + args.vtk;
+  }
   const double write_seconds = clock.lap();
   const double build = stats.grid_seconds + stats.search_seconds;
   const double rate = build > 0 ? static_cast<double>(points.size()) / build : 0.0;
@@ -201,6 +206,11 @@ SearchOptions search_options(const SearchArgs& args) {
 }
 
 void check_output(const SearchArgs& args) {
+  if (args.vtk_bonds && args.vtk.empty()) throw Error("--vtk-bonds needs --vtk FILE.vtu");
+  if (args.vtk_bonds && !args.queries.empty())
+    throw Error("--vtk-bonds: with --queries the rows index another point set; bonds would join unrelated points");
+  if (!args.vtk.empty() && (args.vtk == args.input || args.vtk == args.queries))
+    throw Error("--vtk " + args.vtk + " would overwrite the input");
   for (const char* suffix : {".csv", ".offsets.npy", ".indices.npy"})
     for (const std::string& input : {args.input, args.queries})
       if (!args.out.empty() && args.out + suffix == input)
@@ -229,6 +239,8 @@ void add_search(CLI::App& app) {
                   "query points (file or lattice:N): rows are the queries, ids index the input (the references)");
   cmd->add_flag("--unsorted", args->unsorted, "leave each family in search order (faster)");
   cmd->add_option("--out", args->out, "output prefix (PREFIX.offsets.npy + PREFIX.indices.npy, or PREFIX.csv)");
+  cmd->add_option("--vtk", args->vtk, "also write the points for ParaView (.vtu), with each family's size");
+  cmd->add_flag("--vtk-bonds", args->vtk_bonds, "with --vtk: every pair as a line cell (at most 10^7 bonds)");
   cmd->add_option("--format", args->format, "npy or csv")->check(CLI::IsMember({"npy", "csv"}));
   cmd->add_flag("--json", args->json, "print one JSON line of results and timings");
   cmd->add_flag("--quiet", args->quiet, "no progress on stderr");

@@ -3,6 +3,7 @@
 /// Reading points and writing neighbour lists. Every writer writes a temporary file beside the
 /// target and renames it, so a failure never leaves a truncated file that looks valid. Every
 /// reader error names the file and, for text, the line.
+#include <cstdint>
 #include <string>
 
 #include "horizon/neighbor_list.hpp"
@@ -28,5 +29,13 @@ std::string write_neighbor_list(const std::string& prefix, const NeighborList& l
 /// Reads what write_neighbor_list wrote (either format; int32 or int64 indices). The number of
 /// points is needed for csv, whose rows do not record points with no neighbours.
 NeighborList read_neighbor_list(const std::string& prefix, std::size_t points, bool half);
+
+/// Most bonds write_vtk draws as lines.
+inline constexpr std::uint64_t max_vtk_bonds = 10'000'000;
+
+/// ParaView output (VTK XML UnstructuredGrid, `.vtu`, little-endian binary): every point as a
+/// vertex cell with its family size as point data ("family_size"); with `bonds`, every pair
+/// also as a line cell (refused above max_vtk_bonds). 2-D points get z = 0.
+void write_vtk(const std::string& path, const PointSet& points, const NeighborList& list, bool bonds);
 
 }  // namespace horizon

@@ -24,10 +24,11 @@ class NeighborList:
     indices[offsets[i]:offsets[i + 1]]. offsets is int64 (N + 1), indices int32; when the list
     comes from search() both are read-only views of horizon's buffers (no copy)."""
 
-    def __init__(self, offsets, indices, half=False):
+    def __init__(self, offsets, indices, half=False, references=None):
         self.offsets = offsets
         self.indices = indices
         self.half = bool(half)
+        self.references = references  # with a reference set: its size (ids index it), else None
 
     def __len__(self):
         return len(self.offsets) - 1
@@ -50,6 +51,8 @@ class NeighborList:
 
     def pairs(self):
         """Each pair once, as an (M, 2) int64 array of (i, j) with i < j, sorted."""
+        if self.references is not None:
+            raise ValueError("pairs() needs one point set; rows of a query list index the references: use to_scipy()")
         rows = np.repeat(np.arange(len(self), dtype=np.int64), np.diff(self.offsets))
         columns = self.indices.astype(np.int64)
         keep = rows < columns
@@ -59,11 +62,24 @@ class NeighborList:
         return pairs
 
     def to_scipy(self):
-        """The pattern as a scipy.sparse.csr_matrix of ones (N x N)."""
+        """The pattern as a scipy.sparse.csr_matrix of ones (N x N; queries x references for a
+        list against a reference set)."""
         from scipy.sparse import csr_matrix
 
         n = len(self)
-        return csr_matrix((np.ones(self.total, dtype=np.int8), self.indices, self.offsets), shape=(n, n))
+        columns = n if self.references is None else self.references
+        return csr_matrix((np.ones(self.total, dtype=np.int8), self.indices, self.offsets), shape=(n, columns))
+
+    def save_vtk(self, path, points, bonds=False):
+        """Writes `points` with each family's size (point data "family_size") for ParaView, as
+        `horizon search --vtk` does: a VTK XML .vtu file, written to a temporary name and renamed.
+        bonds=True adds every pair as a line cell (at most 10**7)."""
+        if bonds and self.references is not None:
+            raise ValueError("bonds=True: the rows of a query list index the references; bonds would join unrelated points")
+        array = _host_points(points)
+        if len(array) != len(self):
+            raise ValueError(f"points has {len(array)} rows, the list {len(self)}")
+        _horizon.write_vtk(os.fspath(path), array, self.offsets, self.indices, self.half, bool(bonds))
 
     def save(self, prefix):
         """Writes PREFIX.offsets.npy and PREFIX.indices.npy, as the CLI does: each written to a
@@ -152,8 +168,30 @@ def _search_on_gpu(points, horizon, metric, half, sort_rows, cells_per_horizon):
     return DeviceNeighborList(owned, half)
 
 
+def _host_points(points, name="points"):
+    """`points` as the C-contiguous (N, 2|3) float64/float32 array horizon reads (no copy when it is one)."""
+    array = np.asarray(points)
+    if array.ndim != 2 or array.shape[1] not in (2, 3):
+        raise ValueError(f"{name} must be an (N, 2) or (N, 3) array, not shape {array.shape}")
+    if array.dtype not in (np.float64, np.float32):
+        if not (np.issubdtype(array.dtype, np.floating) or np.issubdtype(array.dtype, np.integer)):
+            raise ValueError(f"{name} must be numbers, not {array.dtype}")
+        array = array.astype(np.float64)
+    return np.ascontiguousarray(array)  # AoS is what horizon reads
+
+
+def _periods(box, dims):
+    """box as the three periods horizon takes (0: open axis)."""
+    if box is None:
+        return [0.0, 0.0, 0.0]
+    periods = [float(p) for p in np.atleast_1d(np.asarray(box, dtype=np.float64))]
+    if len(periods) not in (2, 3) or len(periods) < dims:
+        raise ValueError(f"box must give a period for each of the {dims} axes (0 for an open one), not {box!r}")
+    return periods + [0.0] * (3 - len(periods))
+
+
 def search(points, horizon, *, backend="auto", metric="l2", half=False, sort_rows=True, threads=0, device=0,
-           devices=None, cells_per_horizon=1):
+           devices=None, cells_per_horizon=1, box=None, references=None):
     """The neighbour list of `points` ((N, 2) or (N, 3) array-like, float64 or float32, any
     order): row i holds every j != i with distance(i, j) < horizon.
 
@@ -161,28 +199,31 @@ def search(points, horizon, *, backend="auto", metric="l2", half=False, sort_row
     metric: "l2", "l1" or "linf"; half: keep each pair once, in the row of the smaller id;
     sort_rows: rows ascending by id (False is faster); threads: openmp threads (0: all);
     device: CUDA device; devices: several CUDA devices, one part of the points each;
-    cells_per_horizon: cell side horizon / k (1-3).
+    cells_per_horizon: cell side horizon / k (1-3);
+    box: periods (Lx, Ly[, Lz]) of a periodic box, 0 for an open axis (scipy's boxsize): points in
+    [0, L), nearest-image distances, horizon < L/2;
+    references: a second point set: row i then holds every reference j with distance < horizon
+    (scipy's query_ball_point; nothing is excluded as self) and the list's references is its size.
 
     A CUDA array (__cuda_array_interface__: CuPy, PyTorch; float64, C-contiguous) is searched
     where it lies, on its GPU and stream, and gives a DeviceNeighborList (backend, threads and
     device do not apply).
     """
     if hasattr(points, "__cuda_array_interface__"):
+        if box is not None or references is not None:
+            raise ValueError("box= and references= are not supported for GPU arrays yet: pass host arrays")
         return _search_on_gpu(points, horizon, metric, half, sort_rows, cells_per_horizon)
-    array = np.asarray(points)
-    if array.ndim != 2 or array.shape[1] not in (2, 3):
-        raise ValueError(f"points must be an (N, 2) or (N, 3) array, not shape {array.shape}")
-    if array.dtype not in (np.float64, np.float32):
-        if not (np.issubdtype(array.dtype, np.floating) or np.issubdtype(array.dtype, np.integer)):
-            raise ValueError(f"points must be numbers, not {array.dtype}")
-        array = array.astype(np.float64)
-    array = np.ascontiguousarray(array)  # no copy when already C-ordered; AoS is what horizon reads
+    array = _host_points(points)
+    reference_array = None if references is None else _host_points(references, "references")
+    if reference_array is not None and reference_array.shape[1] != array.shape[1]:
+        raise ValueError(f"references have {reference_array.shape[1]} coordinates, points {array.shape[1]}")
     owned = _horizon.search(array, float(horizon), metric, bool(half), bool(sort_rows), backend, int(threads),
-                            int(device), [int(d) for d in (devices or [])], int(cells_per_horizon))
+                            int(device), [int(d) for d in (devices or [])], int(cells_per_horizon),
+                            _periods(box, array.shape[1]), reference_array)
     offsets, indices = owned.offsets, owned.indices
     offsets.flags.writeable = False
     indices.flags.writeable = False
-    return NeighborList(offsets, indices, half)
+    return NeighborList(offsets, indices, half, None if reference_array is None else len(reference_array))
 
 
 def load(prefix, half=False):

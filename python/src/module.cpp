@@ -6,14 +6,17 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <new>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "horizon/cuda.hpp"
 #include "horizon/generate.hpp"
+#include "horizon/io.hpp"
 #include "horizon/search.hpp"
 
 namespace py = pybind11;
@@ -50,23 +53,47 @@ horizon::SearchOptions options_of(double horizon, const std::string& metric, boo
   return options;
 }
 
-/// points: a C-contiguous (N, 2|3) float64 or float32 array (the Python layer makes it so).
-OwnedList search(py::array points, double horizon, const std::string& metric, bool half, bool sort_rows,
-                 const std::string& backend, int threads, int device, const std::vector<int>& devices,
-                 int cells_per_horizon) {
+/// A C-contiguous (N, 2|3) float64 or float32 array (the Python layer makes it so).
+horizon::PointView point_view(const py::array& points) {
   const auto rows = static_cast<std::size_t>(points.shape(0));
   const int dims = static_cast<int>(points.shape(1));
-  const horizon::PointView view =
-      points.dtype().is(py::dtype::of<float>())
-          ? horizon::PointView(static_cast<const float*>(points.data()), rows, dims)
-          : horizon::PointView(static_cast<const double*>(points.data()), rows, dims);
+  return points.dtype().is(py::dtype::of<float>())
+             ? horizon::PointView(static_cast<const float*>(points.data()), rows, dims)
+             : horizon::PointView(static_cast<const double*>(points.data()), rows, dims);
+}
+
+/// references: None, or the reference points (rows are then `points`, ids index references).
+OwnedList search(py::array points, double horizon, const std::string& metric, bool half, bool sort_rows,
+                 const std::string& backend, int threads, int device, const std::vector<int>& devices,
+                 int cells_per_horizon, const std::array<double, 3>& box, std::optional<py::array> references) {
+  const horizon::PointView view = point_view(points);
   horizon::SearchOptions options = options_of(horizon, metric, half, sort_rows, cells_per_horizon);
   options.backend = horizon::parse_backend(backend);
   options.threads = threads;
   options.device = device;
   options.devices = devices;
+  options.box = box;
+  if (references) {
+    const horizon::PointView reference_view = point_view(*references);
+    py::gil_scoped_release unlocked;
+    return OwnedList{horizon::search(view, reference_view, options)};
+  }
   py::gil_scoped_release unlocked;
   return OwnedList{horizon::search(view, options)};
+}
+
+/// The list (copied from NumPy's int64 offsets and int32 indices) and its points to a .vtu file.
+void write_vtk(const std::string& path, py::array points, py::array_t<std::int64_t> offsets,
+               py::array_t<std::int32_t> indices, bool half, bool bonds) {
+  const horizon::PointView view = point_view(points);
+  horizon::PointSet set{view.dims(), std::vector<double>(view.size() * static_cast<std::size_t>(view.dims()))};
+  for (std::size_t i = 0; i < view.size(); ++i)
+    for (int a = 0; a < view.dims(); ++a) set.xyz[i * static_cast<std::size_t>(view.dims()) + a] = view(i, a);
+  horizon::Buffer<std::int64_t> row_offsets(offsets.data(), offsets.data() + offsets.size());
+  horizon::Buffer<horizon::point_id> row_indices(indices.data(), indices.data() + indices.size());
+  const horizon::NeighborList list(std::move(row_offsets), std::move(row_indices), half);
+  py::gil_scoped_release unlocked;
+  horizon::write_vtk(path, set, list, bonds);
 }
 
 /// points: `count` x `dims` C-contiguous float64 in GPU memory at `pointer`; the list is built on
@@ -132,7 +159,9 @@ PYBIND11_MODULE(_horizon, m) {
         py::arg("horizon"), py::arg("metric"), py::arg("half"), py::arg("sort_rows"), py::arg("cells_per_horizon"));
   m.def("search", &search, py::arg("points"), py::arg("horizon"), py::arg("metric"), py::arg("half"),
         py::arg("sort_rows"), py::arg("backend"), py::arg("threads"), py::arg("device"), py::arg("devices"),
-        py::arg("cells_per_horizon"));
+        py::arg("cells_per_horizon"), py::arg("box"), py::arg("references"));
+  m.def("write_vtk", &write_vtk, py::arg("path"), py::arg("points"), py::arg("offsets"), py::arg("indices"),
+        py::arg("half"), py::arg("bonds"));
   m.def("lattice", [](int n, int dims, double side) { return to_array(horizon::lattice(n, dims, side)); });
   m.def("random_cloud", [](std::size_t count, int dims, std::uint64_t seed, double side) {
     return to_array(horizon::random_cloud(count, dims, seed, side));

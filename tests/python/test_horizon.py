@@ -154,3 +154,76 @@ def test_loads_what_the_cli_wrote(tmp_path):
     reference = horizon.search(horizon.lattice(12), 2.0)
     np.testing.assert_array_equal(nl.offsets, reference.offsets)
     np.testing.assert_array_equal(nl.indices, reference.indices)
+
+
+@pytest.mark.parametrize("dims", [2, 3])
+def test_periodic_box_matches_ckdtree_boxsize(dims):
+    from scipy.spatial import cKDTree
+
+    rng = np.random.default_rng(11)
+    box = [4.0, 5.0, 6.0][:dims]
+    points = rng.random((3000, dims)) * box
+    nl = horizon.search(points, 0.7, box=box)
+    expected = cKDTree(points, boxsize=box).query_pairs(0.7, output_type="ndarray")  # <= r: no ties here
+    expected = expected[np.lexsort((expected[:, 1], expected[:, 0]))]
+    assert np.array_equal(nl.pairs(), expected)
+
+
+def test_periodic_box_with_an_open_axis():
+    rng = np.random.default_rng(12)
+    points = rng.random((1000, 3)) * [3.0, 3.0, 9.0]
+    nl = horizon.search(points, 0.5, box=[3.0, 3.0, 0])  # z open
+    shifted = points.copy()
+    shifted[:, 2] += 100.0  # an open axis is not wrapped: moving along it changes nothing
+    assert np.array_equal(nl.indices, horizon.search(shifted, 0.5, box=[3.0, 3.0, 0]).indices)
+    with pytest.raises(ValueError, match="box"):
+        horizon.search(points, 0.5, box=[3.0])
+    with pytest.raises(ValueError):
+        horizon.search(points * 2, 0.5, box=[3.0, 3.0, 0])  # points outside [0, L)
+
+
+def test_references_match_query_ball_point():
+    from scipy.spatial import cKDTree
+
+    rng = np.random.default_rng(13)
+    references = rng.random((4000, 3)) * 10
+    queries = rng.random((700, 3)) * 10
+    nl = horizon.search(queries, 0.8, references=references)
+    assert len(nl) == len(queries) and nl.references == len(references)
+    expected = cKDTree(references).query_ball_point(queries, 0.8)
+    for i, row in enumerate(expected):
+        assert np.array_equal(nl.row(i), np.sort(row))
+    assert nl.to_scipy().shape == (len(queries), len(references))
+    with pytest.raises(ValueError, match="pairs"):
+        nl.pairs()
+
+
+@pytest.mark.parametrize("bonds", [False, True])
+@pytest.mark.parametrize("dims", [2, 3])
+def test_save_vtk_reads_back_with_meshio(tmp_path, bonds, dims):
+    meshio = pytest.importorskip("meshio")
+    points = horizon.random_cloud(800, dims=dims, seed=5)
+    nl = horizon.search(points, 1.2 if dims == 3 else 0.5)
+    path = tmp_path / "cloud.vtu"
+    nl.save_vtk(path, points, bonds=bonds)
+    mesh = meshio.read(path)
+    expected_xyz = np.zeros((len(points), 3))
+    expected_xyz[:, :dims] = points
+    assert np.array_equal(mesh.points, expected_xyz)
+    assert np.array_equal(mesh.point_data["family_size"], np.diff(nl.offsets))
+    cells = {block.type: block.data for block in mesh.cells}
+    assert np.array_equal(cells["vertex"].ravel(), np.arange(len(points)))
+    if bonds:
+        assert np.array_equal(cells["line"], nl.pairs())
+    else:
+        assert "line" not in cells
+    assert not [f for f in os.listdir(tmp_path) if ".tmp." in f]
+
+
+def test_save_vtk_of_a_half_list_draws_each_pair_once(tmp_path):
+    meshio = pytest.importorskip("meshio")
+    points = horizon.random_cloud(500, seed=6)
+    half = horizon.search(points, 1.3, half=True)
+    half.save_vtk(tmp_path / "half.vtu", points, bonds=True)
+    lines = {block.type: block.data for block in meshio.read(tmp_path / "half.vtu").cells}["line"]
+    assert np.array_equal(lines, horizon.search(points, 1.3).pairs())

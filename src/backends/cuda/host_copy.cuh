@@ -2,11 +2,14 @@
 // Included by search.cu only (one translation unit): definitions in an anonymous namespace.
 // Host <-> device copies of pageable memory at close to pinned bandwidth: through two pinned
 // staging buffers, the DMA engine moving one while all cores fill or empty the other. The
-// buffers are allocated once per host thread and kept (pinning memory costs milliseconds).
+// buffers are allocated once and kept for later copies on any thread (pinning memory is slow).
 #include <cuda_runtime.h>
 
 #include <algorithm>
 #include <cstddef>
+#include <memory>
+#include <mutex>
+#include <vector>
 
 #include "../../core/parallel_copy.hpp"
 #include "device_memory.hpp"
@@ -15,53 +18,89 @@ namespace horizon::detail {
 namespace {
 
 constexpr std::size_t staging_bytes = std::size_t{64} << 20;
+constexpr int max_devices = 64;
 
+/// Two pinned buffers (portable: pinned for every device's context) and, per device, an event
+/// marking each one's last copy.
 class Staging {
 public:
-  Staging() = default;
+  Staging() {
+    HORIZON_CUDA_CHECK(cudaHostAlloc(reinterpret_cast<void**>(&base_), 2 * staging_bytes, cudaHostAllocPortable));
+  }
   Staging(const Staging&) = delete;
   Staging& operator=(const Staging&) = delete;
   ~Staging() {
-    if (!base_) return;
-    for (auto& e : done_) cudaEventDestroy(e);
+    for (auto& events : done_)
+      for (auto& e : events)
+        if (e) cudaEventDestroy(e);
     cudaFreeHost(base_);
   }
-  char* buffer(int i) {
-    if (!base_) {
-      HORIZON_CUDA_CHECK(cudaMallocHost(reinterpret_cast<void**>(&base_), 2 * staging_bytes));
-      for (auto& e : done_) HORIZON_CUDA_CHECK(cudaEventCreateWithFlags(&e, cudaEventDisableTiming));
-    }
-    return base_ + i * staging_bytes;
+  char* buffer(int i) { return base_ + i * staging_bytes; }
+  /// The event of buffer i on the current device.
+  cudaEvent_t done(int i) {
+    int device = 0;
+    HORIZON_CUDA_CHECK(cudaGetDevice(&device));
+    cudaEvent_t& e = done_[device][i];
+    if (!e) HORIZON_CUDA_CHECK(cudaEventCreateWithFlags(&e, cudaEventDisableTiming));
+    return e;
   }
-  cudaEvent_t done(int i) const { return done_[i]; }
 
 private:
   char* base_ = nullptr;
-  cudaEvent_t done_[2] = {};
+  cudaEvent_t done_[max_devices][2] = {};
 };
 
-Staging& staging() {
-  thread_local Staging buffers;
-  return buffers;
-}
+/// Staging buffers for the duration of one copy, taken from a process-wide pool and returned to
+/// it: the multi-device driver runs each part on a new host thread, and pinning fresh buffers
+/// there (then unpinning them at the thread's exit) cost about 0.25 s per call (H200 machine).
+class StagingLease {
+public:
+  StagingLease() {
+    std::lock_guard lock(mutex());
+    if (!pool().empty()) {
+      staging_ = std::move(pool().back());
+      pool().pop_back();
+    }
+    if (!staging_) staging_ = std::make_unique<Staging>();
+  }
+  StagingLease(const StagingLease&) = delete;
+  StagingLease& operator=(const StagingLease&) = delete;
+  ~StagingLease() {
+    std::lock_guard lock(mutex());
+    pool().push_back(std::move(staging_));
+  }
+  Staging* operator->() { return staging_.get(); }
+
+private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  // Never destroyed: the CUDA runtime may be torn down before static destructors run.
+  static std::vector<std::unique_ptr<Staging>>& pool() {
+    static auto* buffers = new std::vector<std::unique_ptr<Staging>>;
+    return *buffers;
+  }
+  std::unique_ptr<Staging> staging_;
+};
 
 /// Device -> host: the GPU fills one staging buffer while all cores empty the other.
 void copy_to_host(void* host, const void* device, std::size_t bytes, cudaStream_t stream) {
   if (bytes == 0) return;
-  Staging& s = staging();
+  StagingLease s;
   const std::size_t chunks = (bytes + staging_bytes - 1) / staging_bytes;
   auto issue = [&](std::size_t c) {
     const std::size_t at = c * staging_bytes, size = std::min(staging_bytes, bytes - at);
-    HORIZON_CUDA_CHECK(cudaMemcpyAsync(s.buffer(c % 2), static_cast<const char*>(device) + at, size,
+    HORIZON_CUDA_CHECK(cudaMemcpyAsync(s->buffer(c % 2), static_cast<const char*>(device) + at, size,
                                        cudaMemcpyDeviceToHost, stream));
-    HORIZON_CUDA_CHECK(cudaEventRecord(s.done(c % 2), stream));
+    HORIZON_CUDA_CHECK(cudaEventRecord(s->done(c % 2), stream));
   };
   issue(0);
   for (std::size_t c = 0; c < chunks; ++c) {
     if (c + 1 < chunks) issue(c + 1);
-    HORIZON_CUDA_CHECK(cudaEventSynchronize(s.done(c % 2)));
+    HORIZON_CUDA_CHECK(cudaEventSynchronize(s->done(c % 2)));
     const std::size_t at = c * staging_bytes, size = std::min(staging_bytes, bytes - at);
-    parallel_copy(static_cast<char*>(host) + at, s.buffer(c % 2), size);
+    parallel_copy(static_cast<char*>(host) + at, s->buffer(c % 2), size);
   }
 }
 
@@ -71,14 +110,14 @@ void upload_coordinates(double* device, PointView points, cudaStream_t stream) {
   const std::size_t values = points.size() * static_cast<std::size_t>(points.dims());
   const std::size_t per_chunk = staging_bytes / sizeof(double);
   const std::size_t chunks = (values + per_chunk - 1) / per_chunk;
-  Staging& s = staging();
+  StagingLease s;
   for (std::size_t c = 0; c < chunks; ++c) {
     const std::size_t first = c * per_chunk, count = std::min(per_chunk, values - first);
-    auto* buffer = reinterpret_cast<double*>(s.buffer(c % 2));
-    if (c >= 2) HORIZON_CUDA_CHECK(cudaEventSynchronize(s.done(c % 2)));  // its last upload is done
+    auto* buffer = reinterpret_cast<double*>(s->buffer(c % 2));
+    if (c >= 2) HORIZON_CUDA_CHECK(cudaEventSynchronize(s->done(c % 2)));  // its last upload is done
     parallel_copy_coordinates(buffer, points, first, count);
     HORIZON_CUDA_CHECK(cudaMemcpyAsync(device + first, buffer, count * sizeof(double), cudaMemcpyHostToDevice, stream));
-    HORIZON_CUDA_CHECK(cudaEventRecord(s.done(c % 2), stream));
+    HORIZON_CUDA_CHECK(cudaEventRecord(s->done(c % 2), stream));
   }
   HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
 }

@@ -14,8 +14,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <mutex>
 #include <sstream>
 #include <type_traits>
+#include <vector>
 
 #include "../../core/memory_check.hpp"
 #include "../backends.hpp"
@@ -218,13 +220,40 @@ void select_device(int device) {
   HORIZON_CUDA_CHECK(cudaSetDevice(device));
 }
 
-/// A stream per host thread and device, created once: creating one per search would cost a
-/// synchronisation-free but measurable call each time.
-cudaStream_t host_stream(int device) {
-  thread_local cudaStream_t streams[64] = {};
-  if (!streams[device]) HORIZON_CUDA_CHECK(cudaStreamCreateWithFlags(&streams[device], cudaStreamNonBlocking));
-  return streams[device];
-}
+/// A stream of `device` for one search, from a process-wide pool: the multi-device driver's
+/// part threads are new at every call, and a stream per thread was created (and leaked) each time.
+class StreamLease {
+public:
+  explicit StreamLease(int device) : device_(device) {
+    std::lock_guard lock(mutex());
+    std::vector<cudaStream_t>& spare = pool()[device];
+    if (!spare.empty()) {
+      stream_ = spare.back();
+      spare.pop_back();
+    } else {
+      HORIZON_CUDA_CHECK(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking));
+    }
+  }
+  StreamLease(const StreamLease&) = delete;
+  StreamLease& operator=(const StreamLease&) = delete;
+  ~StreamLease() {
+    std::lock_guard lock(mutex());
+    pool()[device_].push_back(stream_);
+  }
+  cudaStream_t get() const { return stream_; }
+
+private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  static std::vector<cudaStream_t>* pool() {  // never destroyed, as the staging pool
+    static auto* streams = new std::vector<cudaStream_t>[max_devices];
+    return streams;
+  }
+  int device_;
+  cudaStream_t stream_ = nullptr;
+};
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -245,7 +274,9 @@ NeighborList search_cuda(PointView points, const SearchOptions& options, SearchS
   stats.threads = 1;
   const std::size_t n = points.size();
   const int dims = points.dims();
-  const cudaStream_t stream = host_stream(options.device);
+  if (options.device >= max_devices) throw Error("CUDA device " + std::to_string(options.device) + " is past the 64 supported");
+  const StreamLease lease(options.device);  // outlives every array below, freed on its stream
+  const cudaStream_t stream = lease.get();
   MemoryMeter meter(options.device, stream);
 
   auto clock = std::chrono::steady_clock::now();
