@@ -195,6 +195,19 @@ TEST_F(CliTest, VtkOutputAndItsRefusals) {
   EXPECT_FALSE(exists("big.vtu"));
 }
 
+TEST_F(CliTest, BondFiltersCutBondsAndBadFiltersAreNamed) {
+  // A disk in the plane x = 5 of the 12^3 lattice (spacing 10/12) cuts the x-bonds through it.
+  write("disk.json", R"([{"type": "disk", "center": [5, 5, 5], "normal": [1, 0, 0], "radius": 2}])");
+  const Result cut = run("search lattice:12 --horizon 1.25 --bond-filters disk.json --json --out cut");
+  ASSERT_EQ(cut.status, 0) << cut.output;
+  EXPECT_OUTPUT(cut, "\"bond_filters\":1");
+  EXPECT_EQ(cut.output.find("\"bonds_cut\":0,"), std::string::npos) << cut.output;
+  write("bad.json", R"([{"type": "disk", "center": [5, 5, 5], "radius": 2}])");
+  expect_refused("search lattice:12 --horizon 1.25 --bond-filters bad.json", "bad.json: filter 0: missing key 'normal'");
+  expect_refused("search lattice:12 --horizon 1.25 --bond-filters none.json", "none.json");
+  expect_refused("search lattice:12 --horizon 1.25 --box 10,10,10 --bond-filters disk.json", "--bond-filters with --box");
+}
+
 TEST_F(CliTest, MaxMemoryRefusesAListThatDoesNotFit) {
   expect_refused("search lattice:30 --horizon 1.005 --max-memory 100K --out list",
                  "needs 11.7 MB (2929168 entries) but 102400 bytes are allowed");

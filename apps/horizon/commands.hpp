@@ -20,6 +20,7 @@ struct SearchArgs {
   std::string box;                              // periodic box "Lx,Ly[,Lz]", 0: open axis
   std::string queries;                          // query points; the input is then the references
   std::string vtk;                              // ParaView file (.vtu) of the points
+  std::string bond_filters;                     // JSON file of rectangles and disks that cut bonds
   double horizon = 0;
   int threads = 0, cells_per_horizon = 1, device = 0;
   bool half = false, unsorted = false, json = false, quiet = false, vtk_bonds = false;

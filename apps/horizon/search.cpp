@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "horizon/bond_filter.hpp"
 #include "horizon/cuda.hpp"
 #include "horizon/error.hpp"
 #include "horizon/io.hpp"
@@ -31,11 +32,23 @@ void run_search(const SearchArgs& args) {
   const double read_seconds = clock.lap();
 
   const SearchOptions options = search_options(args);
+  const std::vector<BondFilter> filters =
+      args.bond_filters.empty() ? std::vector<BondFilter>{} : read_bond_filters(args.bond_filters);
+  if (!filters.empty() && (options.box[0] > 0 || options.box[1] > 0 || options.box[2] > 0))
+    throw Error("--bond-filters with --box: bonds across the periodic faces have no single segment; not supported");
   progress.say("searching " + std::to_string(points.size()) + " points");
   SearchStats stats;
-  const NeighborList list = args.queries.empty() ? search(references.view(), options, &stats)
-                                                 : search(queries.view(), references.view(), options, &stats);
+  NeighborList list = args.queries.empty() ? search(references.view(), options, &stats)
+                                           : search(queries.view(), references.view(), options, &stats);
   clock.lap();
+  const std::int64_t unfiltered = list.total();
+  if (!filters.empty()) {
+    progress.say("applying " + std::to_string(filters.size()) + " bond filters");
+    const double reach = bond_reach(options, points.dims);
+    list = args.queries.empty() ? filter_bonds(list, references.view(), filters, reach, args.threads)
+                                : filter_bonds(list, queries.view(), references.view(), filters, reach, args.threads);
+  }
+  const double filter_seconds = clock.lap();
 
   std::string written;
   if (!args.out.empty()) {
@@ -67,11 +80,16 @@ void run_search(const SearchArgs& args) {
          {{"read", read_seconds},
           {"grid", stats.grid_seconds},
           {"search", stats.search_seconds},
+          {"filter", filter_seconds},
           {"write", write_seconds},
-          {"total", read_seconds + build + write_seconds}}},
+          {"total", read_seconds + build + filter_seconds + write_seconds}}},
         {"points_per_second", rate},
         {"outputs", written},
     };
+    if (!filters.empty()) {
+      report["bond_filters"] = filters.size();
+      report["bonds_cut"] = unfiltered - list.total();
+    }
     if (stats.backend == Backend::cuda) {
       report["gpu"] = stats.gpu_name;
       report["peak_gpu_bytes"] = stats.peak_gpu_bytes;
@@ -239,6 +257,8 @@ void add_search(CLI::App& app) {
                   "query points (file or lattice:N): rows are the queries, ids index the input (the references)");
   cmd->add_flag("--unsorted", args->unsorted, "leave each family in search order (faster)");
   cmd->add_option("--out", args->out, "output prefix (PREFIX.offsets.npy + PREFIX.indices.npy, or PREFIX.csv)");
+  cmd->add_option("--bond-filters", args->bond_filters,
+                  "JSON array of rectangles and disks (Peridigm's): bonds whose segment crosses one are dropped");
   cmd->add_option("--vtk", args->vtk, "also write the points for ParaView (.vtu), with each family's size");
   cmd->add_flag("--vtk-bonds", args->vtk_bonds, "with --vtk: every pair as a line cell (at most 10^7 bonds)");
   cmd->add_option("--format", args->format, "npy or csv")->check(CLI::IsMember({"npy", "csv"}));
