@@ -3,13 +3,12 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <optional>
 
 #include <omp.h>
 
-#include "parallel_scan.hpp"
+#include "select_entries.hpp"
 #include "horizon/error.hpp"
 
 namespace horizon {
@@ -134,36 +133,8 @@ NeighborList filter(const NeighborList& list, PointView rows, PointView columns,
     return true;
   };
 
-  // One pass of tests: kept entries go to a copy of the list at the original offsets, then each
-  // row moves down to its new offset.
-  const auto n = static_cast<std::int64_t>(list.size());
-  const std::int64_t* from = list.offsets().data();
-  Buffer<point_id> kept_entries(static_cast<std::size_t>(list.total()));
-  Buffer<std::int64_t> offsets(list.size() + 1);
-  offsets[0] = 0;
-#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads) if (threads > 1)
-  for (std::int64_t i = 0; i < n; ++i) {
-    const auto row = list.row(static_cast<std::size_t>(i));
-    point_id* out = kept_entries.data() + from[i];
-    if (row_sides.near[i] == 0) {  // no bond of this row reaches a filter
-      if (!row.empty()) std::memcpy(out, row.data(), row.size() * sizeof(point_id));
-      offsets[i + 1] = static_cast<std::int64_t>(row.size());
-      continue;
-    }
-    std::int64_t count = 0;
-    for (point_id j : row)
-      if (kept(static_cast<std::size_t>(i), j)) out[count++] = j;
-    offsets[i + 1] = count;
-  }
-  detail::inclusive_scan(offsets.data(), offsets.size(), threads);
-  if (offsets.back() == list.total()) return NeighborList(std::move(offsets), std::move(kept_entries), list.is_half());
-  Buffer<point_id> indices(static_cast<std::size_t>(offsets.back()));
-#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads) if (threads > 1)
-  for (std::int64_t i = 0; i < n; ++i)
-    if (offsets[i + 1] > offsets[i])
-      std::memcpy(indices.data() + offsets[i], kept_entries.data() + from[i],
-                  static_cast<std::size_t>(offsets[i + 1] - offsets[i]) * sizeof(point_id));
-  return NeighborList(std::move(offsets), std::move(indices), list.is_half());
+  // Rows of points near no filter (with a known reach) need no tests.
+  return detail::select_entries(list, [&](std::size_t i) { return row_sides.near[i] == 0; }, kept, threads);
 }
 
 }  // namespace
