@@ -15,19 +15,25 @@ namespace {
 
 int resolve(int threads) { return threads > 0 ? threads : omp_get_max_threads(); }
 
-template <Metric M>
-double distance_measure(PointView points, std::size_t i, std::size_t j) {  // as the search compares it
-  const double dz = points.dims() == 3 ? points(i, 2) - points(j, 2) : 0.0;
-  return metric_accumulate<M>(points(i, 0) - points(j, 0), points(i, 1) - points(j, 1), dz);
-}
-
-template <Metric M>
-NeighborList refresh_with(const NeighborList& candidates, PointView points, double horizon, int threads) {
+/// The candidates still within the horizon, compared as the search compares them (row point
+/// minus candidate, (dx*dx + dy*dy) + dz*dz or its l1/linf forms, against the threshold).
+template <Metric M, int D>
+NeighborList refresh_with(const NeighborList& candidates, const double* xyz, double horizon, int threads) {
   const double limit = metric_threshold(M, horizon);
   return detail::select_entries(
       candidates, [](std::size_t) { return false; },
-      [&](std::size_t i, point_id j) { return distance_measure<M>(points, i, static_cast<std::size_t>(j)) < limit; },
+      [&](std::size_t i, point_id j) {
+        const double* a = xyz + D * i;
+        const double* b = xyz + D * static_cast<std::size_t>(j);
+        return metric_accumulate<M>(a[0] - b[0], a[1] - b[1], D == 3 ? a[2] - b[2] : 0.0) < limit;
+      },
       threads);
+}
+
+template <Metric M>
+NeighborList refresh_in(const NeighborList& candidates, const double* xyz, int dims, double horizon, int threads) {
+  return dims == 3 ? refresh_with<M, 3>(candidates, xyz, horizon, threads)
+                   : refresh_with<M, 2>(candidates, xyz, horizon, threads);
 }
 
 }  // namespace
@@ -79,10 +85,20 @@ bool VerletList::needs_rebuild(PointView points, int threads) const {
 NeighborList VerletList::refresh(PointView points, int threads) const {
   check_shape(points);
   validate(points);
+  std::vector<double> promoted;  // float32 input, as the search promotes it
+  const double* xyz = points.float64_data();
+  if (!xyz) {
+    promoted.resize(built_at_.size());
+    for (std::size_t i = 0; i < points.size(); ++i)
+      for (int a = 0; a < dims_; ++a) promoted[i * static_cast<std::size_t>(dims_) + a] = points(i, a);
+    xyz = promoted.data();
+  }
+  const double h = options_.horizon;
+  threads = resolve(threads);
   switch (options_.metric) {
-    case Metric::manhattan: return refresh_with<Metric::manhattan>(candidates_, points, options_.horizon, resolve(threads));
-    case Metric::chebyshev: return refresh_with<Metric::chebyshev>(candidates_, points, options_.horizon, resolve(threads));
-    default: return refresh_with<Metric::euclidean>(candidates_, points, options_.horizon, resolve(threads));
+    case Metric::manhattan: return refresh_in<Metric::manhattan>(candidates_, xyz, dims_, h, threads);
+    case Metric::chebyshev: return refresh_in<Metric::chebyshev>(candidates_, xyz, dims_, h, threads);
+    default: return refresh_in<Metric::euclidean>(candidates_, xyz, dims_, h, threads);
   }
 }
 
