@@ -63,7 +63,6 @@ HWY_INLINE V accumulate(V dx, V dy, V dz) {
   }
 }
 
-
 /// Writes the lanes of `ids` selected by `bits` to `out`, in lane order (and junk after them, up
 /// to a vector). AVX-512 compresses in a register; narrower vectors shuffle by the table above.
 template <class DI, class VI>
