@@ -56,4 +56,10 @@ struct PointSet {
 /// whose dimension is not 2 or 3.
 void validate(PointView points);
 
+/// Copies `points` (as doubles) into `into` from point `at` on (`into` holds room for them).
+void copy_points(PointView points, PointSet& into, std::size_t at = 0);
+
+/// `points` as a PointSet of doubles (float32 promoted).
+PointSet to_point_set(PointView points);
+
 }  // namespace horizon

@@ -34,8 +34,7 @@ private:
 
   SearchOptions options_;
   double skin_;
-  int dims_;
-  std::vector<double> built_at_;  ///< the positions at the build, x y [z] per point
+  PointSet built_at_;  ///< the positions at the build
   NeighborList candidates_;
 };
 

@@ -85,10 +85,7 @@ OwnedList search(py::array points, double horizon, const std::string& metric, bo
 /// The list (copied from NumPy's int64 offsets and int32 indices) and its points to a .vtu file.
 void write_vtk(const std::string& path, py::array points, py::array_t<std::int64_t> offsets,
                py::array_t<std::int32_t> indices, bool half, bool bonds) {
-  const horizon::PointView view = point_view(points);
-  horizon::PointSet set{view.dims(), std::vector<double>(view.size() * static_cast<std::size_t>(view.dims()))};
-  for (std::size_t i = 0; i < view.size(); ++i)
-    for (int a = 0; a < view.dims(); ++a) set.xyz[i * static_cast<std::size_t>(view.dims()) + a] = view(i, a);
+  const horizon::PointSet set = horizon::to_point_set(point_view(points));
   horizon::Buffer<std::int64_t> row_offsets(offsets.data(), offsets.data() + offsets.size());
   horizon::Buffer<horizon::point_id> row_indices(indices.data(), indices.data() + indices.size());
   const horizon::NeighborList list(std::move(row_offsets), std::move(row_indices), half);

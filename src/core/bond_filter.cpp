@@ -41,10 +41,14 @@ std::optional<Vec> meets_plane(const BondFilter& f, const Vec& a, const Vec& b) 
   return Vec{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
 }
 
-bool inside(const RectangleFilter& f, const Vec& x) {
+/// x's coordinates along the rectangle's bottom and side, from its lower left corner.
+std::pair<double, double> rectangle_coordinates(const RectangleFilter& f, const Vec& x) {
   const Vec r = minus(x, f.lower_left_corner);
-  const double along_bottom = dot(r, f.bottom_unit_vector);
-  const double along_side = dot(r, cross(f.bottom_unit_vector, f.normal));
+  return {dot(r, f.bottom_unit_vector), dot(r, cross(f.bottom_unit_vector, f.normal))};
+}
+
+bool inside(const RectangleFilter& f, const Vec& x) {
+  const auto [along_bottom, along_side] = rectangle_coordinates(f, x);
   return along_bottom >= 0 && along_bottom <= f.bottom_length && along_side >= 0 && along_side <= f.side_length;
 }
 
@@ -66,9 +70,7 @@ struct Sides {
 bool within_reach(const BondFilter& f, const Vec& x, double side, double reach) {
   if (!(std::abs(side) < reach)) return false;
   if (const auto* r = std::get_if<RectangleFilter>(&f)) {
-    const Vec d = minus(x, r->lower_left_corner);
-    const double along_bottom = dot(d, r->bottom_unit_vector);
-    const double along_side = dot(d, cross(r->bottom_unit_vector, r->normal));
+    const auto [along_bottom, along_side] = rectangle_coordinates(*r, x);
     return along_bottom > -reach && along_bottom < r->bottom_length + reach && along_side > -reach &&
            along_side < r->side_length + reach;
   }

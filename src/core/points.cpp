@@ -8,6 +8,20 @@
 
 namespace horizon {
 
+void copy_points(PointView points, PointSet& into, std::size_t at) {
+  const int dims = points.dims();
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < static_cast<std::int64_t>(points.size()); ++i)
+    for (int a = 0; a < dims; ++a)
+      into.xyz[(at + static_cast<std::size_t>(i)) * dims + a] = points(static_cast<std::size_t>(i), a);
+}
+
+PointSet to_point_set(PointView points) {
+  PointSet set{points.dims(), std::vector<double>(points.size() * static_cast<std::size_t>(points.dims()))};
+  copy_points(points, set);
+  return set;
+}
+
 void validate(PointView points) {
   if (points.dims() != 2 && points.dims() != 3)
     throw Error("points must have 2 or 3 coordinates, not " + std::to_string(points.dims()));

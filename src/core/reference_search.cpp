@@ -15,15 +15,6 @@ namespace {
 
 const char* axis_name(int axis) { return axis == 0 ? "x" : axis == 1 ? "y" : "z"; }
 
-/// Copies `points` (as doubles) into `local` from point `at` on.
-void copy_points(PointView points, PointSet& local, std::size_t at) {
-  const int dims = points.dims();
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < static_cast<std::int64_t>(points.size()); ++i)
-    for (int a = 0; a < dims; ++a)
-      local.xyz[(at + static_cast<std::size_t>(i)) * dims + a] = points(static_cast<std::size_t>(i), a);
-}
-
 /// Checks the box against the points and the horizon: clear errors naming the axis or point.
 void validate_box(PointView points, const SearchOptions& options, const char* which) {
   const auto& box = options.box;

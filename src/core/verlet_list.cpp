@@ -2,9 +2,9 @@
 
 #include <omp.h>
 
-#include <algorithm>
 #include <cmath>
 
+#include "reference_search.hpp"
 #include "select_entries.hpp"
 #include "horizon/error.hpp"
 #include "horizon/metric.hpp"
@@ -36,69 +36,71 @@ NeighborList refresh_in(const NeighborList& candidates, const double* xyz, int d
                    : refresh_with<M, 2>(candidates, xyz, horizon, threads);
 }
 
+/// Whether a point of `now` is `limit` or farther (in the metric) from where it was `then`.
+template <Metric M>
+bool any_moved(PointView now, PointView then, double limit, int threads) {
+  const double threshold = metric_threshold(M, limit);
+  const auto n = static_cast<std::int64_t>(now.size());
+  bool moved = false;
+#pragma omp parallel for schedule(static) num_threads(threads) reduction(|| : moved)
+  for (std::int64_t p = 0; p < n; ++p) {
+    const auto i = static_cast<std::size_t>(p);
+    const double dz = now.dims() == 3 ? now(i, 2) - then(i, 2) : 0.0;
+    moved = moved || !(metric_accumulate<M>(now(i, 0) - then(i, 0), now(i, 1) - then(i, 1), dz) < threshold);
+  }
+  return moved;
+}
+
 }  // namespace
 
 VerletList::VerletList(PointView points, const SearchOptions& options, double skin)
-    : options_(options), skin_(skin), dims_(points.dims()) {
+    : options_(options), skin_(skin) {
   if (!(skin > 0) || !std::isfinite(skin)) throw Error("Verlet skin must be finite and > 0, not " + std::to_string(skin));
-  if (options.box[0] > 0 || options.box[1] > 0 || options.box[2] > 0)
+  if (detail::is_periodic(options))
     throw Error("a Verlet list in a periodic box is not supported: points wrapping across it break the skin bound");
   SearchOptions wide = options;
   wide.horizon = options.horizon + skin;
   candidates_ = search(points, wide);  // validates the points and the horizon
-  built_at_.resize(points.size() * static_cast<std::size_t>(dims_));
-  for (std::size_t i = 0; i < points.size(); ++i)
-    for (int a = 0; a < dims_; ++a) built_at_[i * static_cast<std::size_t>(dims_) + a] = points(i, a);
+  built_at_ = to_point_set(points);
 }
 
 void VerletList::check_shape(PointView points) const {
-  if (points.dims() != dims_ || points.size() * static_cast<std::size_t>(dims_) != built_at_.size())
-    throw Error("the Verlet list was built for " + std::to_string(built_at_.size() / static_cast<std::size_t>(dims_)) +
-                " points in " + std::to_string(dims_) + "-D, not " + std::to_string(points.size()) + " in " +
+  if (points.dims() != built_at_.dims || points.size() != built_at_.size())
+    throw Error("the Verlet list was built for " + std::to_string(built_at_.size()) + " points in " +
+                std::to_string(built_at_.dims) + "-D, not " + std::to_string(points.size()) + " in " +
                 std::to_string(points.dims()) + "-D");
 }
 
 bool VerletList::needs_rebuild(PointView points, int threads) const {
   check_shape(points);
   validate(points);
-  const PointView built(built_at_.data(), points.size(), dims_);
   // Less a margin far above the rounding of distances near the horizon (differences of close
   // coordinates are exact, so the error is relative to the distances, not the coordinates).
   const double half_skin = 0.5 * skin_ - 1e-9 * (options_.horizon + skin_);
-  const auto n = static_cast<std::int64_t>(points.size());
-  bool moved = false;
-#pragma omp parallel for schedule(static) num_threads(resolve(threads)) reduction(|| : moved)
-  for (std::int64_t i = 0; i < n; ++i) {
-    double d[3] = {0, 0, 0};
-    for (int a = 0; a < dims_; ++a) d[a] = points(static_cast<std::size_t>(i), a) - built(static_cast<std::size_t>(i), a);
-    double step = 0;
-    switch (options_.metric) {
-      case Metric::euclidean: step = std::sqrt((d[0] * d[0] + d[1] * d[1]) + d[2] * d[2]); break;
-      case Metric::manhattan: step = (std::abs(d[0]) + std::abs(d[1])) + std::abs(d[2]); break;
-      case Metric::chebyshev: step = std::max({std::abs(d[0]), std::abs(d[1]), std::abs(d[2])}); break;
-    }
-    moved = moved || !(step < half_skin);
+  const PointView then = built_at_.view();
+  threads = resolve(threads);
+  switch (options_.metric) {
+    case Metric::manhattan: return any_moved<Metric::manhattan>(points, then, half_skin, threads);
+    case Metric::chebyshev: return any_moved<Metric::chebyshev>(points, then, half_skin, threads);
+    default: return any_moved<Metric::euclidean>(points, then, half_skin, threads);
   }
-  return moved;
 }
 
 NeighborList VerletList::refresh(PointView points, int threads) const {
   check_shape(points);
   validate(points);
-  std::vector<double> promoted;  // float32 input, as the search promotes it
+  PointSet promoted;  // float32 input, as the search promotes it
   const double* xyz = points.float64_data();
   if (!xyz) {
-    promoted.resize(built_at_.size());
-    for (std::size_t i = 0; i < points.size(); ++i)
-      for (int a = 0; a < dims_; ++a) promoted[i * static_cast<std::size_t>(dims_) + a] = points(i, a);
-    xyz = promoted.data();
+    promoted = to_point_set(points);
+    xyz = promoted.xyz.data();
   }
   const double h = options_.horizon;
   threads = resolve(threads);
   switch (options_.metric) {
-    case Metric::manhattan: return refresh_in<Metric::manhattan>(candidates_, xyz, dims_, h, threads);
-    case Metric::chebyshev: return refresh_in<Metric::chebyshev>(candidates_, xyz, dims_, h, threads);
-    default: return refresh_in<Metric::euclidean>(candidates_, xyz, dims_, h, threads);
+    case Metric::manhattan: return refresh_in<Metric::manhattan>(candidates_, xyz, built_at_.dims, h, threads);
+    case Metric::chebyshev: return refresh_in<Metric::chebyshev>(candidates_, xyz, built_at_.dims, h, threads);
+    default: return refresh_in<Metric::euclidean>(candidates_, xyz, built_at_.dims, h, threads);
   }
 }
 
