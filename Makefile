@@ -8,7 +8,7 @@ PACKAGES = build-essential cmake libgtest-dev libbenchmark-dev libcli11-dev libf
            python3-dev python3-pybind11 pybind11-dev python3-numpy python3-scipy python3-pytest \
            python3-venv python3-pip python3-matplotlib python3-meshio
 
-.PHONY: deps build run test test-sanitize bench clean
+.PHONY: deps build run test test-sanitize fuzz bench clean
 
 deps:
 	@missing=$$(for p in $(PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || echo $$p; done); \
@@ -42,6 +42,24 @@ test-sanitize: deps
 	  HORIZON_DIFFERENTIAL_PROBLEMS=300 ctest --output-on-failure -j $(JOBS) -E "mpi|find_package_consumer"
 	cd build-sanitize && ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  ctest --output-on-failure -j $(JOBS) -R mpi
+
+# libFuzzer (Debian's clang) over every reader of user files, FUZZ_SECONDS per target, JOBS
+# targets at a time; inputs that reach new code are merged into the committed corpus, which
+# `make test` replays (under the sanitizers too).
+FUZZ_TARGETS = npy_points text_points bond_filters neighbor_list
+FUZZ_SECONDS ?= 600
+FUZZ_FLAGS = -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
+fuzz:
+	@dpkg -s clang libomp-dev >/dev/null 2>&1 || (apt-get update -qq && apt-get install -y -qq clang libomp-dev)
+	cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHORIZON_FUZZ=ON \
+	  -DHORIZON_TESTS=OFF -DHORIZON_BENCH=OFF -DHORIZON_CUDA=off -DHORIZON_PYTHON=off -DHORIZON_MPI=OFF \
+	  "-DCMAKE_CXX_FLAGS=$(FUZZ_FLAGS)" "-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=address,undefined"
+	cmake --build build-fuzz -j $(JOBS)
+	printf '%s\n' $(FUZZ_TARGETS) | xargs -P $(JOBS) -I{} sh -c 'mkdir -p build-fuzz/found/{} && \
+	  build-fuzz/bin/fuzz_{} -max_total_time=$(FUZZ_SECONDS) -timeout=10 -rss_limit_mb=4096 \
+	    -artifact_prefix=build-fuzz/crash-{}- build-fuzz/found/{} tests/fuzz/corpus/{} > build-fuzz/fuzz_{}.log 2>&1; \
+	  status=$$?; echo "fuzz_{}: exit $$status"; tail -n 2 build-fuzz/fuzz_{}.log; exit $$status'
+	for t in $(FUZZ_TARGETS); do build-fuzz/bin/fuzz_$$t -merge=1 tests/fuzz/corpus/$$t build-fuzz/found/$$t 2>&1 | tail -n 1; done
 
 bench: build
 	$(BUILD)/bin/horizon_bench

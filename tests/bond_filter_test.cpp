@@ -1,5 +1,6 @@
 // Bond filters: exact hand-made crossings (edges, rims, ends on the plane, bonds in the plane),
 // filter_bonds against a brute-force pass over the oracle's pairs, symmetry, and the JSON reader.
+#include <cmath>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -165,6 +166,14 @@ TEST_F(BondFilterJson, ReadsBothShapesAndNormalises) {
   EXPECT_EQ(std::get<DiskFilter>(filters[1]).normal, (std::array<double, 3>{0, 0, 1}));
 }
 
+TEST_F(BondFilterJson, NormalisesHugeVectorsWithoutOverflow) {
+  const auto filters = read_bond_filters(file(
+      R"([{"type": "disk", "center": [0, 0, 0], "normal": [1e300, 0, 1e300], "radius": 1}])"));
+  const auto normal = std::get<DiskFilter>(filters[0]).normal;
+  EXPECT_DOUBLE_EQ(normal[0], std::sqrt(0.5));
+  EXPECT_DOUBLE_EQ(normal[2], std::sqrt(0.5));
+}
+
 TEST_F(BondFilterJson, ErrorsNameTheFilterAndKey) {
   expect_error("[{\"type\": \"disk\"", "not valid JSON");
   expect_error("{}", "expected a JSON array");
@@ -180,6 +189,8 @@ TEST_F(BondFilterJson, ErrorsNameTheFilterAndKey) {
                     "bottom_unit_vector": [1, 1, 0], "bottom_length": 1, "side_length": 1}])",
                "must be perpendicular");
   expect_error("[]x", "not valid JSON");
+  // Found by the fuzzer: a number too large for a double escaped as nlohmann's out_of_range.
+  expect_error("[1e99999]", "not valid JSON");
   EXPECT_THROW(read_bond_filters("/nonexistent/filters.json"), Error);
 }
 

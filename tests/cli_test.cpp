@@ -4,10 +4,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 namespace {
 
@@ -208,10 +210,25 @@ TEST_F(CliTest, BondFiltersCutBondsAndBadFiltersAreNamed) {
   expect_refused("search lattice:12 --horizon 1.25 --box 10,10,10 --bond-filters disk.json", "--bond-filters with --box");
 }
 
-TEST_F(CliTest, MaxMemoryRefusesAListThatDoesNotFit) {
-  expect_refused("search lattice:30 --horizon 1.005 --max-memory 100K --out list",
-                 "needs 11.7 MB (2929168 entries) but 102400 bytes are allowed");
+TEST_F(CliTest, MaxMemoryStreamsTheListToItsFilesOrRefusesIt) {
+  // A list larger than the memory allowed, with nowhere to stream it to (no --out, CSV, VTK):
+  // refused with its size and the ways out.
+  const std::string too_large = "needs 11.7 MB (2929168 entries) but 102400 bytes are allowed";
+  expect_refused("search lattice:30 --horizon 1.005 --max-memory 100K", too_large);
+  expect_refused("search lattice:30 --horizon 1.005 --max-memory 100K --out list --format csv", too_large);
+  expect_refused("search lattice:30 --horizon 1.005 --max-memory 100K --out list --vtk list.vtu", too_large);
+  EXPECT_FALSE(exists("list.csv"));
   EXPECT_FALSE(exists("list.offsets.npy"));
+  // With --out (npy) it is written in batches that fit: the same files as without the limit.
+  ASSERT_EQ(run("search lattice:30 --horizon 1.005 --out whole --quiet").status, 0);
+  const Result parts = run("search lattice:30 --horizon 1.005 --max-memory 100K --out parts --json");
+  ASSERT_EQ(parts.status, 0) << parts.output;
+  EXPECT_OUTPUT(parts, "\"written_in_batches\":true");
+  EXPECT_OUTPUT(parts, "\"neighbors\":2929168");
+  for (const char* file : {".offsets.npy", ".indices.npy"}) {
+    std::ifstream a(dir_ / ("whole" + std::string(file)), std::ios::binary), b(dir_ / ("parts" + std::string(file)), std::ios::binary);
+    EXPECT_TRUE(std::equal(std::istreambuf_iterator<char>(a), {}, std::istreambuf_iterator<char>(b), {})) << file;
+  }
   EXPECT_EQ(run("search lattice:30 --horizon 1.005 --max-memory 1G --quiet").status, 0);
   expect_refused("search lattice:30 --horizon 1.005 --max-memory lots", "expected a size");
 }

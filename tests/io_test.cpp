@@ -104,6 +104,10 @@ TEST_F(IoTest, MalformedNpy) {
   EXPECT_NE(read_error(npy("o.npy", "{'descr': '<f8', 'fortran_order': False, 'shape': (4000000000000000000, 3), }", 8))
                 .find("too large"), std::string::npos);
   EXPECT_NE(read_error(write("m.npy", "not numpy")).find("bad magic"), std::string::npos);
+  // Found by the fuzzer: a version 2 header length of 4 GB was allocated before it was read.
+  const std::string v2_huge_header = read_error(write("v2.npy", std::string("\x93NUMPY\x02\x00\x00\x00\x00\xff{'descr'", 18)));
+  EXPECT_NE(v2_huge_header.find("truncated .npy header (4278190080 bytes announced, 6 in the file)"), std::string::npos)
+      << v2_huge_header;
   // float32 and Fortran order are read correctly.
   const std::string values("\x00\x00\x80\x3f\x00\x00\x00\x40\x00\x00\x40\x40\x00\x00\x80\x40", 16);
   std::string h = "{'descr': '<f4', 'fortran_order': True, 'shape': (2, 2), }";

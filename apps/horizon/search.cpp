@@ -38,8 +38,25 @@ void run_search(const SearchArgs& args) {
     throw Error("--bond-filters with --box: bonds across the periodic faces have no single segment; not supported");
   progress.say("searching " + std::to_string(points.size()) + " points");
   SearchStats stats;
-  NeighborList list = args.queries.empty() ? search(references.view(), options, &stats)
-                                           : search(queries.view(), references.view(), options, &stats);
+  NeighborList list;
+  std::string written;
+  std::int64_t streamed = -1;  // entries written in batches, when the list did not fit in memory
+  try {
+    list = args.queries.empty() ? search(references.view(), options, &stats)
+                                : search(queries.view(), references.view(), options, &stats);
+  } catch (const ListTooLarge& too_large) {
+    const bool periodic = options.box[0] > 0 || options.box[1] > 0 || options.box[2] > 0;
+    const bool plain = args.queries.empty() && filters.empty() && args.vtk.empty() && !periodic;
+    if (args.out.empty() || args.format != "npy" || !plain) throw;
+    // It fits on disk: built again in batches of half the memory allowed, each appended to the files.
+    progress.say("the list does not fit in memory: writing it to " + args.out + " in batches, on the CPU");
+    SearchOptions cpu = options;
+    if (cpu.backend != Backend::serial) cpu.backend = Backend::openmp;
+    cpu.devices.clear();
+    streamed = write_neighbor_list_in_batches(args.out, references.view(), cpu,
+                                              static_cast<std::int64_t>(too_large.bytes_available / 2 / sizeof(point_id)), &stats);
+    written = args.out + ".offsets.npy," + args.out + ".indices.npy";
+  }
   clock.lap();
   const std::int64_t unfiltered = list.total();
   if (!filters.empty()) {
@@ -49,9 +66,9 @@ void run_search(const SearchArgs& args) {
                                 : filter_bonds(list, queries.view(), references.view(), filters, reach, args.threads);
   }
   const double filter_seconds = clock.lap();
+  const std::int64_t entries = streamed < 0 ? list.total() : streamed;
 
-  std::string written;
-  if (!args.out.empty()) {
+  if (!args.out.empty() && streamed < 0) {
     progress.say("writing " + std::to_string(list.total()) + " neighbours");
     written = write_neighbor_list(args.out, list, args.format == "csv" ? ListFormat::csv : ListFormat::npy);
   }
@@ -73,7 +90,7 @@ void run_search(const SearchArgs& args) {
         {"metric", metric_name(options.metric)},
         {"cells_per_horizon", options.cells_per_horizon},
         {"half", options.half},
-        {"neighbors", list.total()},
+        {"neighbors", entries},
         {"backend", backend_name(stats.backend)},
         {"threads", stats.threads},
         {"seconds",
@@ -86,6 +103,7 @@ void run_search(const SearchArgs& args) {
         {"points_per_second", rate},
         {"outputs", written},
     };
+    if (streamed >= 0) report["written_in_batches"] = true;
     if (!filters.empty()) {
       report["bond_filters"] = filters.size();
       report["bonds_cut"] = unfiltered - list.total();
@@ -118,8 +136,8 @@ void run_search(const SearchArgs& args) {
     std::cout << report.dump() << std::endl;
   } else {
     std::cout << points.size() << " points (" << points.dims << "-D), horizon " << args.horizon
-              << ": " << list.total() << " neighbours (" << (options.half ? "half" : "full")
-              << " list, " << static_cast<double>(list.total()) / std::max<std::size_t>(1, points.size())
+              << ": " << entries << " neighbours (" << (options.half ? "half" : "full")
+              << " list, " << static_cast<double>(entries) / std::max<std::size_t>(1, points.size())
               << " per point)\n"
               << "backend " << backend_name(stats.backend) << ", " << stats.threads
               << " thread(s): grid " << stats.grid_seconds << " s, search " << stats.search_seconds

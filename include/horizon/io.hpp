@@ -8,6 +8,7 @@
 
 #include "horizon/neighbor_list.hpp"
 #include "horizon/points.hpp"
+#include "horizon/search.hpp"
 
 namespace horizon {
 
@@ -25,6 +26,13 @@ enum class ListFormat { npy, csv };
 /// one `i,j` row per entry. Returns the paths written, comma-separated.
 std::string write_neighbor_list(const std::string& prefix, const NeighborList& list,
                                 ListFormat format);
+
+/// The list of search(points, options) written as write_neighbor_list(prefix, list, npy) writes
+/// it, without holding it in memory: built by search_in_batches (batched_search.hpp), at most
+/// `batch_entries` ids at a time, each batch appended to the indices file. Refused before
+/// anything is written when the files would not fit on their disk. Returns the entries written.
+std::int64_t write_neighbor_list_in_batches(const std::string& prefix, PointView points, const SearchOptions& options,
+                                           std::int64_t batch_entries, SearchStats* stats = nullptr);
 
 /// Reads what write_neighbor_list wrote (either format; int32 or int64 indices). The number of
 /// points is needed for csv, whose rows do not record points with no neighbours.

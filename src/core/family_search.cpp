@@ -32,24 +32,64 @@ std::vector<CellRun> split_into_runs(const CellIndex& index, int threads) {
 
 }  // namespace
 
-NeighborList search_families(const CellIndex& index, const SearchOptions& options, int threads) {
-  const std::size_t n = index.point_count();
-  const std::vector<CellRun> runs = split_into_runs(index, threads);
-  const auto run_count = static_cast<std::int64_t>(runs.size());
+namespace {
 
-  Buffer<std::int64_t> offsets(n + 1);
+/// Row offsets of every point: the count pass over `runs`, scanned.
+Buffer<std::int64_t> count_rows(FamilyPass& pass, const std::vector<CellRun>& runs, int threads) {
+  const auto run_count = static_cast<std::int64_t>(runs.size());
+  Buffer<std::int64_t> offsets(pass.index->point_count() + 1);
   std::memset(offsets.data(), 0, offsets.size() * sizeof(std::int64_t));
-  FamilyPass pass{&index, &options, offsets.data(), nullptr};
+  pass.offsets = offsets.data();
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
   for (std::int64_t r = 0; r < run_count; ++r) count_families(pass, runs[static_cast<std::size_t>(r)]);
-
   inclusive_scan(offsets.data(), offsets.size(), threads);
+  return offsets;
+}
+
+void fill_rows(const FamilyPass& pass, const std::vector<CellRun>& runs, int threads) {
+  const auto run_count = static_cast<std::int64_t>(runs.size());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
+  for (std::int64_t r = 0; r < run_count; ++r) fill_families(pass, runs[static_cast<std::size_t>(r)]);
+}
+
+}  // namespace
+
+NeighborList search_families(const CellIndex& index, const SearchOptions& options, int threads) {
+  const std::vector<CellRun> runs = split_into_runs(index, threads);
+  FamilyPass pass{&index, &options};
+  Buffer<std::int64_t> offsets = count_rows(pass, runs, threads);
   check_list_fits(offsets.back(), options);
   Buffer<point_id> indices(static_cast<std::size_t>(offsets.back()));
   pass.indices = indices.data();
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
-  for (std::int64_t r = 0; r < run_count; ++r) fill_families(pass, runs[static_cast<std::size_t>(r)]);
+  fill_rows(pass, runs, threads);
   return NeighborList(std::move(offsets), std::move(indices), options.half);
+}
+
+void search_families_in_batches(const CellIndex& index, const SearchOptions& options, int threads,
+                                std::int64_t batch_entries,
+                                const std::function<void(const std::int64_t* offsets)>& begin,
+                                const std::function<void(std::size_t first, std::size_t last, const point_id* ids)>& rows) {
+  const std::size_t n = index.point_count();
+  const std::vector<CellRun> runs = split_into_runs(index, threads);
+  FamilyPass pass{&index, &options};
+  const Buffer<std::int64_t> offsets = count_rows(pass, runs, threads);
+  begin(offsets.data());
+  Buffer<point_id> batch;
+  for (std::size_t first = 0; first < n;) {
+    const std::int64_t limit = offsets[first] + std::max<std::int64_t>(batch_entries, 1);
+    std::size_t last = static_cast<std::size_t>(std::upper_bound(offsets.begin() + first + 1, offsets.end(), limit) -
+                                                offsets.begin()) - 1;
+    last = std::max(last, first + 1);
+    const std::int64_t entries = offsets[last] - offsets[first];
+    if (batch.size() < static_cast<std::size_t>(entries)) batch = Buffer<point_id>(static_cast<std::size_t>(entries));
+    pass.indices = batch.data();
+    pass.rows_begin = static_cast<point_id>(first);
+    pass.rows_end = static_cast<point_id>(last);
+    pass.indices_base = offsets[first];
+    if (entries > 0) fill_rows(pass, runs, threads);
+    rows(first, last, batch.data());
+    first = last;
+  }
 }
 
 }  // namespace horizon::detail

@@ -5,6 +5,8 @@
 // once (a one-pass variant that stored rows and copied them spent more in page faults than the
 // count pass costs).
 #include <cstdint>
+#include <functional>
+#include <limits>
 
 #include "horizon/cell_index.hpp"
 #include "horizon/neighbor_list.hpp"
@@ -23,6 +25,10 @@ struct FamilyPass {
   const SearchOptions* options = nullptr;
   std::int64_t* offsets = nullptr;  ///< count: offsets[i + 1] = family size; fill: row offsets
   point_id* indices = nullptr;      ///< fill: the rows
+  /// fill: only the rows of points [rows_begin, rows_end), row i at indices + offsets[i] -
+  /// indices_base (a batch of a list built in parts).
+  point_id rows_begin = 0, rows_end = std::numeric_limits<point_id>::max();
+  std::int64_t indices_base = 0;
 };
 
 /// For each point i of the run: offsets[i + 1] = the size of its family. Compiled for each SIMD
@@ -38,5 +44,14 @@ const char* simd_target();
 
 /// The neighbour list of the points of `index` on `threads` threads (1: serially).
 NeighborList search_families(const CellIndex& index, const SearchOptions& options, int threads);
+
+/// The same list in batches of whole rows, for lists larger than memory: `begin(offsets)` once
+/// the count pass has given every row's offset (N + 1 of them), then `rows(first, last, ids)`
+/// for consecutive batches [first, last) of at most `batch_entries` ids (a longer row alone).
+/// Each batch fills only the cells holding one of its points.
+void search_families_in_batches(const CellIndex& index, const SearchOptions& options, int threads,
+                                std::int64_t batch_entries,
+                                const std::function<void(const std::int64_t* offsets)>& begin,
+                                const std::function<void(std::size_t first, std::size_t last, const point_id* ids)>& rows);
 
 }  // namespace horizon::detail

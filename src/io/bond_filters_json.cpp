@@ -1,5 +1,6 @@
 // --bond-filters FILE: the JSON array of rectangles and disks of bond_filter.hpp, checked key by
 // key so that every error names the file, the filter and the key.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -41,6 +42,10 @@ public:
       if (!std::isfinite(v[a])) fail("'" + std::string(key) + "' must be finite");
     }
     if (unit) {
+      // Scaled first, so that components near the largest double do not overflow the length.
+      const double largest = std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2])});
+      if (largest > 0)
+        for (double& x : v) x /= largest;
       const double length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
       if (!(length > 0)) fail("'" + std::string(key) + "' must not be the zero vector");
       for (double& x : v) x /= length;
@@ -77,7 +82,7 @@ std::vector<BondFilter> read_bond_filters(const std::string& path) {
   nlohmann::json document;
   try {
     document = nlohmann::json::parse(file);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // parse_error, and out_of_range for huge numbers
     throw Error(path + ": not valid JSON (" + std::string(e.what()) + ")");
   }
   if (!document.is_array()) throw Error(path + ": expected a JSON array of filters");

@@ -1,8 +1,13 @@
+#include <sys/statvfs.h>
+
 #include <charconv>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include "atomic_file.hpp"
+#include "horizon/batched_search.hpp"
 #include "horizon/error.hpp"
 #include "horizon/io.hpp"
 #include "npy.hpp"
@@ -122,6 +127,42 @@ std::string write_neighbor_list(const std::string& prefix, const NeighborList& l
   detail::write_npy(indices_path, "i4", {list.indices().size()}, list.indices().data());
   detail::write_npy(offsets_path, "i8", {list.offsets().size()}, list.offsets().data());
   return offsets_path + "," + indices_path;
+}
+
+std::int64_t write_neighbor_list_in_batches(const std::string& prefix, PointView points, const SearchOptions& options,
+                                           std::int64_t batch_entries, SearchStats* stats) {
+  const std::string offsets_path = prefix + ".offsets.npy", indices_path = prefix + ".indices.npy";
+  std::optional<detail::AtomicFile> offsets_file, indices_file;
+  const std::int64_t* row_offsets = nullptr;  // the search's, alive until it returns
+  std::int64_t row_offsets_total = 0;
+  RowBatchSink sink;
+  sink.begin = [&](const std::int64_t* offsets, std::size_t rows) {
+    row_offsets = offsets;
+    row_offsets_total = offsets[rows];
+    const std::string offsets_header = detail::npy_header("i8", {rows + 1});
+    const std::string indices_header = detail::npy_header("i4", {static_cast<std::size_t>(offsets[rows])});
+    const std::size_t needed = offsets_header.size() + (rows + 1) * sizeof(std::int64_t) + indices_header.size() +
+                               static_cast<std::size_t>(offsets[rows]) * sizeof(point_id);
+    const std::filesystem::path directory = std::filesystem::absolute(indices_path).parent_path();
+    struct statvfs disk {};
+    if (statvfs(directory.c_str(), &disk) == 0 && needed > static_cast<std::size_t>(disk.f_bavail) * disk.f_frsize)
+      throw Error(prefix + ": the neighbour list needs " + std::to_string(needed) + " bytes on disk, " +
+                  std::to_string(static_cast<std::size_t>(disk.f_bavail) * disk.f_frsize) + " are free in " +
+                  directory.string());
+    indices_file.emplace(indices_path);
+    indices_file->write(indices_header);
+    offsets_file.emplace(offsets_path);
+    offsets_file->write(offsets_header);
+    offsets_file->write(offsets, (rows + 1) * sizeof(std::int64_t));
+  };
+  sink.rows = [&](std::size_t first, std::size_t last, const point_id* ids) {
+    indices_file->write(ids, static_cast<std::size_t>(row_offsets[last] - row_offsets[first]) * sizeof(point_id));
+  };
+  search_in_batches(points, options, batch_entries, sink, stats);
+  // Offsets go last: when they are in place, the indices they describe are complete.
+  indices_file->commit();
+  offsets_file->commit();
+  return row_offsets_total;
 }
 
 NeighborList read_neighbor_list(const std::string& prefix, std::size_t points, bool half) {

@@ -49,6 +49,15 @@ NpyArray read_npy(const std::string& path) {
   } else {
     throw Error(path + ": unsupported .npy version " + std::to_string(major));
   }
+  // The header's length is checked against the file before it is allocated (a corrupt length
+  // field could ask for 4 GB).
+  const auto header_start = in.tellg();
+  in.seekg(0, std::ios::end);
+  const auto file_rest = static_cast<std::size_t>(in.tellg() - header_start);
+  in.seekg(header_start);
+  if (header_length > file_rest)
+    throw Error(path + ": truncated .npy header (" + std::to_string(header_length) + " bytes announced, " +
+                std::to_string(file_rest) + " in the file)");
   std::string header(header_length, '\0');
   if (!in.read(header.data(), header_length)) throw Error(path + ": truncated .npy header");
 

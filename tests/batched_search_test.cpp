@@ -1,0 +1,103 @@
+// Lists built in batches of rows: the batches, put together, are the list search() builds, for
+// every dataset, metric, k, full/half, sorted/unsorted, CPU backend and batch size; and the files
+// write_neighbor_list_in_batches writes are those write_neighbor_list writes.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "datasets.hpp"
+#include "horizon/batched_search.hpp"
+#include "horizon/error.hpp"
+#include "horizon/io.hpp"
+
+namespace horizon {
+namespace {
+
+/// The batches of search_in_batches, checked for order and size as they come, put together.
+NeighborList assemble(PointView points, const SearchOptions& options, std::int64_t batch_entries) {
+  Buffer<std::int64_t> offsets;
+  std::vector<point_id> ids;
+  std::size_t next = 0;
+  RowBatchSink sink;
+  sink.begin = [&](const std::int64_t* o, std::size_t rows) {
+    EXPECT_EQ(rows, points.size());
+    offsets = Buffer<std::int64_t>(o, o + rows + 1);
+  };
+  sink.rows = [&](std::size_t first, std::size_t last, const point_id* batch) {
+    EXPECT_EQ(first, next);
+    EXPECT_GT(last, first);
+    const std::int64_t entries = offsets[last] - offsets[first];
+    EXPECT_TRUE(entries <= batch_entries || last == first + 1) << entries << " entries in rows " << first << "-" << last;
+    ids.insert(ids.end(), batch, batch + entries);
+    next = last;
+  };
+  search_in_batches(points, options, batch_entries, sink);
+  EXPECT_EQ(next, points.size());
+  return NeighborList(std::move(offsets), Buffer<point_id>(ids.begin(), ids.end()), options.half);
+}
+
+TEST(BatchedSearch, BatchesMakeTheSameListAsOneSearch) {
+  for (int dims : {2, 3})
+    for (const auto& data : testing::datasets(dims))
+      for (Metric metric : {Metric::euclidean, Metric::manhattan, Metric::chebyshev})
+        for (int k : {1, 2})
+          for (bool half : {false, true})
+            for (bool sorted : {true, false})
+              for (Backend backend : {Backend::serial, Backend::openmp}) {
+                SearchOptions options = testing::options_for(data, metric, k, half, backend);
+                options.sort_rows = sorted;
+                options.threads = 3;
+                const NeighborList whole = search(data.points.view(), options);
+                for (std::int64_t batch : {1, 37, 5000}) {
+                  const NeighborList parts = assemble(data.points.view(), options, batch);
+                  ASSERT_EQ(parts.offsets(), whole.offsets()) << data.name << " dims " << dims << " batch " << batch;
+                  ASSERT_EQ(parts.indices(), whole.indices()) << data.name << " dims " << dims << " batch " << batch;
+                }
+              }
+}
+
+TEST(BatchedSearch, QueriesAndRefusals) {
+  const PointSet points = random_cloud(800, 3, 4);
+  SearchOptions options;
+  options.horizon = 1.5;
+  options.queries = 300;
+  const NeighborList parts = assemble(points.view(), options, 50);
+  const NeighborList whole = search(points.view(), options);
+  EXPECT_EQ(parts.offsets(), whole.offsets());
+  EXPECT_EQ(parts.indices(), whole.indices());
+
+  RowBatchSink ignore{[](const std::int64_t*, std::size_t) {}, [](std::size_t, std::size_t, const point_id*) {}};
+  SearchOptions cuda = options;
+  cuda.backend = Backend::cuda;
+  EXPECT_THROW(search_in_batches(points.view(), cuda, 50, ignore), Error);
+  SearchOptions periodic = options;
+  periodic.box = {10, 10, 10};
+  EXPECT_THROW(search_in_batches(points.view(), periodic, 50, ignore), Error);
+}
+
+std::string bytes_of(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST(BatchedSearch, FilesEqualThoseOfTheWholeList) {
+  const auto directory = std::filesystem::temp_directory_path() / "horizon_batched_files";
+  std::filesystem::create_directories(directory);
+  const PointSet points = lattice(12);
+  SearchOptions options;
+  options.horizon = 3.015 * 10.0 / 12;
+  for (bool half : {false, true}) {
+    options.half = half;
+    const std::string whole = (directory / "whole").string(), parts = (directory / "parts").string();
+    write_neighbor_list(whole, search(points.view(), options), ListFormat::npy);
+    EXPECT_EQ(write_neighbor_list_in_batches(parts, points.view(), options, 1000), lattice_entries(12, 3, 3.015) / (half ? 2 : 1));
+    EXPECT_EQ(bytes_of(parts + ".offsets.npy"), bytes_of(whole + ".offsets.npy"));
+    EXPECT_EQ(bytes_of(parts + ".indices.npy"), bytes_of(whole + ".indices.npy"));
+  }
+  std::filesystem::remove_all(directory);
+}
+
+}  // namespace
+}  // namespace horizon
