@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "assemble_batches.hpp"
 #include "datasets.hpp"
 #include "horizon/batched_search.hpp"
 #include "horizon/error.hpp"
@@ -14,29 +15,6 @@
 
 namespace horizon {
 namespace {
-
-/// The batches of search_in_batches, checked for order and size as they come, put together.
-NeighborList assemble(PointView points, const SearchOptions& options, std::int64_t batch_entries) {
-  Buffer<std::int64_t> offsets;
-  std::vector<point_id> ids;
-  std::size_t next = 0;
-  RowBatchSink sink;
-  sink.begin = [&](const std::int64_t* o, std::size_t rows) {
-    EXPECT_EQ(rows, points.size());
-    offsets = Buffer<std::int64_t>(o, o + rows + 1);
-  };
-  sink.rows = [&](std::size_t first, std::size_t last, const point_id* batch) {
-    EXPECT_EQ(first, next);
-    EXPECT_GT(last, first);
-    const std::int64_t entries = offsets[last] - offsets[first];
-    EXPECT_TRUE(entries <= batch_entries || last == first + 1) << entries << " entries in rows " << first << "-" << last;
-    ids.insert(ids.end(), batch, batch + entries);
-    next = last;
-  };
-  search_in_batches(points, options, batch_entries, sink);
-  EXPECT_EQ(next, points.size());
-  return NeighborList(std::move(offsets), Buffer<point_id>(ids.begin(), ids.end()), options.half);
-}
 
 TEST(BatchedSearch, BatchesMakeTheSameListAsOneSearch) {
   for (int dims : {2, 3})
@@ -50,8 +28,8 @@ TEST(BatchedSearch, BatchesMakeTheSameListAsOneSearch) {
                 options.sort_rows = sorted;
                 options.threads = 3;
                 const NeighborList whole = search(data.points.view(), options);
-                for (std::int64_t batch : {1, 37, 5000}) {
-                  const NeighborList parts = assemble(data.points.view(), options, batch);
+                for (std::int64_t batch : {25, 5000}) {
+                  const NeighborList parts = testing::assemble_batches(data.points.view(), options, batch);
                   ASSERT_EQ(parts.offsets(), whole.offsets()) << data.name << " dims " << dims << " batch " << batch;
                   ASSERT_EQ(parts.indices(), whole.indices()) << data.name << " dims " << dims << " batch " << batch;
                 }
@@ -63,7 +41,7 @@ TEST(BatchedSearch, QueriesAndRefusals) {
   SearchOptions options;
   options.horizon = 1.5;
   options.queries = 300;
-  const NeighborList parts = assemble(points.view(), options, 50);
+  const NeighborList parts = testing::assemble_batches(points.view(), options, 50);
   const NeighborList whole = search(points.view(), options);
   EXPECT_EQ(parts.offsets(), whole.offsets());
   EXPECT_EQ(parts.indices(), whole.indices());
