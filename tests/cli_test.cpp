@@ -210,6 +210,33 @@ TEST_F(CliTest, BondFiltersCutBondsAndBadFiltersAreNamed) {
   expect_refused("search lattice:12 --horizon 1.25 --box 10,10,10 --bond-filters disk.json", "--bond-filters with --box");
 }
 
+TEST_F(CliTest, BlockPairsKeepOnlyTheirBonds) {
+  // Two rows of points (Peridigm: x y z block volume), block 1 at y = 0 and block 2 at y = 1:
+  // with pairs 1-1 and 2-2 no bond crosses between the rows.
+  std::string peridigm = "# x y z block volume\n";
+  for (int i = 0; i < 10; ++i)
+    for (int row = 0; row < 2; ++row)
+      peridigm += std::to_string(i) + " " + std::to_string(row) + " 0 " + std::to_string(row + 1) + " 1\n";
+  write("two.txt", peridigm);
+  const Result all = run("search two.txt --horizon 1.5 --json");
+  EXPECT_OUTPUT(all, "\"neighbors\":92");  // entries: 2 x 18 along the rows, 20 across, 36 diagonal
+  const Result split = run("search two.txt --horizon 1.5 --block-pairs 1-1,2-2 --json --vtk two.vtu");
+  ASSERT_EQ(split.status, 0) << split.output;
+  EXPECT_OUTPUT(split, "\"neighbors\":36");
+  EXPECT_OUTPUT(split, "\"block_pairs\":2");
+  EXPECT_OUTPUT(split, "\"bonds_cut\":56");
+  std::ifstream vtu(dir_ / "two.vtu");
+  const std::string xml((std::istreambuf_iterator<char>(vtu)), {});
+  EXPECT_NE(xml.find("Name=\"block\""), std::string::npos);
+  // --blocks overrides the file's column: every point in block 3.
+  write("three.txt", std::string(20 * 2, ' ').replace(0, 40, "3\n3\n3\n3\n3\n3\n3\n3\n3\n3\n3\n3\n3\n3\n3\n3\n3\n3\n3\n3\n"));
+  EXPECT_OUTPUT(run("search two.txt --horizon 1.5 --blocks three.txt --block-pairs 3-3 --json"), "\"neighbors\":92");
+  expect_refused("search two.txt --horizon 1.5 --block-pairs 1-3", "block pair 1-3: no point is in block 3 (blocks: 1, 2)");
+  expect_refused("search two.txt --horizon 1.5 --block-pairs 1-x", "'1-x' is not a pair of block ids");
+  expect_refused("search lattice:4 --horizon 3 --block-pairs 1-1", "--block-pairs needs a block per point");
+  expect_refused("search lattice:4 --horizon 3 --blocks three.txt", "20 block ids for 64 points");
+}
+
 TEST_F(CliTest, MaxMemoryStreamsTheListToItsFilesOrRefusesIt) {
   // A list larger than the memory allowed, with nowhere to stream it to (no --out, CSV, VTK):
   // refused with its size and the ways out.

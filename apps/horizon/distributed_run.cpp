@@ -61,8 +61,8 @@ void run_distributed(const SearchArgs& args) {
   check_output(args);
   if (!args.box.empty() || !args.queries.empty())
     throw Error("--box and --queries are not supported under mpirun yet: run them without mpirun (one node, any backend)");
-  if (!args.vtk.empty() || !args.bond_filters.empty())
-    throw Error("--vtk and --bond-filters are not supported under mpirun yet: run them without mpirun (one node, any backend)");
+  if (!args.vtk.empty() || !args.bond_filters.empty() || !args.block_pairs.empty())
+    throw Error("--vtk, --bond-filters and --block-pairs are not supported under mpirun yet: run them without mpirun (one node, any backend)");
   const Progress progress(args.quiet || rank != 0);
   Stopwatch clock;
   const PointSet all = load_input(args.input);

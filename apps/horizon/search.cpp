@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "horizon/block_filter.hpp"
 #include "horizon/bond_filter.hpp"
 #include "horizon/cuda.hpp"
 #include "horizon/error.hpp"
@@ -26,7 +27,8 @@ void run_search(const SearchArgs& args) {
   check_output(args);
   Stopwatch clock;
   progress.say("reading " + args.input);
-  const PointSet references = load_input(args.input);
+  PointSet references = load_input(args.input);
+  if (!args.blocks.empty()) references.blocks = read_blocks(args.blocks, references.size());
   const PointSet queries = args.queries.empty() ? PointSet{} : load_input(args.queries);
   const PointSet& points = args.queries.empty() ? references : queries;  // the rows
   const double read_seconds = clock.lap();
@@ -36,6 +38,11 @@ void run_search(const SearchArgs& args) {
       args.bond_filters.empty() ? std::vector<BondFilter>{} : read_bond_filters(args.bond_filters);
   if (!filters.empty() && (options.box[0] > 0 || options.box[1] > 0 || options.box[2] > 0))
     throw Error("--bond-filters with --box: bonds across the periodic faces have no single segment; not supported");
+  const BlockPairs block_pairs = args.block_pairs.empty() ? BlockPairs{} : BlockPairs::parse(args.block_pairs);
+  if (!args.block_pairs.empty() && references.blocks.empty())
+    throw Error("--block-pairs needs a block per point: --blocks FILE, or a Peridigm input (x y z block volume)");
+  if (!args.block_pairs.empty() && !args.queries.empty())
+    throw Error("--block-pairs with --queries: not supported (the blocks are the input's points')");
   progress.say("searching " + std::to_string(points.size()) + " points");
   SearchStats stats;
   NeighborList list;
@@ -46,7 +53,7 @@ void run_search(const SearchArgs& args) {
                                 : search(queries.view(), references.view(), options, &stats);
   } catch (const ListTooLarge& too_large) {
     const bool periodic = options.box[0] > 0 || options.box[1] > 0 || options.box[2] > 0;
-    const bool plain = args.queries.empty() && filters.empty() && args.vtk.empty() && !periodic;
+    const bool plain = args.queries.empty() && filters.empty() && block_pairs.pairs.empty() && args.vtk.empty() && !periodic;
     if (args.out.empty() || args.format != "npy" || !plain) throw;
     // It fits on disk: built again in batches of half the memory allowed, each appended to the files.
     progress.say("the list does not fit in memory: writing it to " + args.out + " in batches, on the CPU");
@@ -64,6 +71,10 @@ void run_search(const SearchArgs& args) {
     const double reach = bond_reach(options, points.dims);
     list = args.queries.empty() ? filter_bonds(list, references.view(), filters, reach, args.threads)
                                 : filter_bonds(list, queries.view(), references.view(), filters, reach, args.threads);
+  }
+  if (!block_pairs.pairs.empty()) {
+    progress.say("keeping the bonds of " + std::to_string(block_pairs.pairs.size()) + " block pairs");
+    list = filter_blocks(list, references.blocks, block_pairs, args.threads);
   }
   const double filter_seconds = clock.lap();
   const std::int64_t entries = streamed < 0 ? list.total() : streamed;
@@ -104,10 +115,9 @@ void run_search(const SearchArgs& args) {
         {"outputs", written},
     };
     if (streamed >= 0) report["written_in_batches"] = true;
-    if (!filters.empty()) {
-      report["bond_filters"] = filters.size();
-      report["bonds_cut"] = unfiltered - list.total();
-    }
+    if (!filters.empty()) report["bond_filters"] = filters.size();
+    if (!block_pairs.pairs.empty()) report["block_pairs"] = block_pairs.pairs.size();
+    if (!filters.empty() || !block_pairs.pairs.empty()) report["bonds_cut"] = unfiltered - list.total();
     if (stats.backend == Backend::cuda) {
       report["gpu"] = stats.gpu_name;
       report["peak_gpu_bytes"] = stats.peak_gpu_bytes;
@@ -277,7 +287,10 @@ void add_search(CLI::App& app) {
   cmd->add_option("--out", args->out, "output prefix (PREFIX.offsets.npy + PREFIX.indices.npy, or PREFIX.csv)");
   cmd->add_option("--bond-filters", args->bond_filters,
                   "JSON array of rectangles and disks (Peridigm's): bonds whose segment crosses one are dropped");
-  cmd->add_option("--vtk", args->vtk, "also write the points for ParaView (.vtu), with each family's size");
+  cmd->add_option("--blocks", args->blocks,
+                  "a block id per point (.npy of integers, or text, one per line); default: a Peridigm input's block column");
+  cmd->add_option("--block-pairs", args->block_pairs, "keep only bonds between these blocks, e.g. 1-1,1-2,2-2");
+  cmd->add_option("--vtk", args->vtk, "also write the points for ParaView (.vtu), with each family's size (and block)");
   cmd->add_flag("--vtk-bonds", args->vtk_bonds, "with --vtk: every pair as a line cell (at most 10^7 bonds)");
   cmd->add_option("--format", args->format, "npy or csv")->check(CLI::IsMember({"npy", "csv"}));
   cmd->add_flag("--json", args->json, "print one JSON line of results and timings");

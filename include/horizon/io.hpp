@@ -5,6 +5,7 @@
 /// reader error names the file and, for text, the line.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "horizon/neighbor_list.hpp"
 #include "horizon/points.hpp"
@@ -16,6 +17,11 @@ namespace horizon {
 /// else text: one point per line, `x y [z]` separated by commas or spaces, `#` comments, an
 /// optional header line; or Peridigm's discretization `x y z block_id volume` (5 columns).
 PointSet read_points(const std::string& path);
+
+/// A block id per point (Peridigm's blocks, block_filter.hpp): `.npy` of int32/int64 (N), or
+/// text with one integer per line. Error naming the file (and line) unless there are `points`
+/// ids from 0 to 2^31 - 1.
+std::vector<std::int32_t> read_blocks(const std::string& path, std::size_t points);
 
 /// Points to `.npy` (N x dims float64) or, for any other extension, text `x y [z]` lines.
 void write_points(const std::string& path, const PointSet& points);
@@ -42,8 +48,9 @@ NeighborList read_neighbor_list(const std::string& prefix, std::size_t points, b
 inline constexpr std::uint64_t max_vtk_bonds = 10'000'000;
 
 /// ParaView output (VTK XML UnstructuredGrid, `.vtu`, little-endian binary): every point as a
-/// vertex cell with its family size as point data ("family_size"); with `bonds`, every pair
-/// also as a line cell (refused above max_vtk_bonds). 2-D points get z = 0.
+/// vertex cell with its family size as point data ("family_size") and, when `points.blocks` is
+/// given, its block ("block"); with `bonds`, every pair also as a line cell (refused above
+/// max_vtk_bonds). 2-D points get z = 0.
 void write_vtk(const std::string& path, const PointSet& points, const NeighborList& list, bool bonds);
 
 }  // namespace horizon

@@ -4,6 +4,7 @@
 /// float64 or float32, and an owning PointSet for points read from files or generated.
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace horizon {
@@ -45,8 +46,13 @@ private:
 
 /// Points that own their coordinates (AoS float64).
 struct PointSet {
+  PointSet() = default;
+  PointSet(int dims_, std::vector<double> xyz_, std::vector<std::int32_t> blocks_ = {})
+      : dims(dims_), xyz(std::move(xyz_)), blocks(std::move(blocks_)) {}
+
   int dims = 3;
   std::vector<double> xyz;
+  std::vector<std::int32_t> blocks;  ///< a block id per point when the input gave them (Peridigm), else empty
 
   std::size_t size() const { return dims > 0 ? xyz.size() / static_cast<std::size_t>(dims) : 0; }
   PointView view() const { return PointView(xyz.data(), size(), dims); }

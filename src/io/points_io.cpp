@@ -58,6 +58,8 @@ bool parse_number(std::string_view field, double& value) {
   return error == std::errc() && end == field.data() + field.size();
 }
 
+constexpr double max_block_id = 2147483647.0;
+
 // Text: `x y [z]` points, or Peridigm's `x y z block_id volume` (the first three columns).
 PointSet points_from_text(const std::string& path) {
   std::ifstream in(path);
@@ -98,12 +100,56 @@ PointSet points_from_text(const std::string& path) {
         throw Error(where + "non-finite coordinate '" + std::string(fields[a]) + "'");
       set.xyz.push_back(values[a]);
     }
+    if (columns == 5) {  // Peridigm's block id
+      if (!(values[3] >= 0 && values[3] <= max_block_id && values[3] == std::floor(values[3])))
+        throw Error(where + "block id '" + std::string(fields[3]) + "' is not an integer from 0 to 2^31 - 1");
+      set.blocks.push_back(static_cast<std::int32_t>(values[3]));
+    }
   }
   if (set.dims == 0) set.dims = 3;  // an empty file: no points
   return set;
 }
 
 }  // namespace
+
+std::vector<std::int32_t> read_blocks(const std::string& path, std::size_t points) {
+  std::vector<double> values;
+  if (ends_with(path, ".npy")) {
+    const detail::NpyArray array = detail::read_npy(path);
+    if (array.shape.size() != 1 || array.type[0] != 'i')
+      throw Error(path + ": expected a 1-D array of integer block ids");
+    for (std::size_t e = 0; e < array.elements(); ++e) {
+      std::int64_t v = 0;
+      if (array.type == "i8") {
+        std::memcpy(&v, &array.bytes[e * 8], 8);
+      } else {
+        std::int32_t v32;
+        std::memcpy(&v32, &array.bytes[e * 4], 4);
+        v = v32;
+      }
+      if (v < 0 || v > static_cast<std::int64_t>(max_block_id))
+        throw Error(path + ": block id " + std::to_string(v) + " of point " + std::to_string(e) + " is not from 0 to 2^31 - 1");
+      values.push_back(static_cast<double>(v));
+    }
+  } else {
+    std::ifstream in(path);
+    if (!in) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
+    std::string line;
+    for (std::size_t number = 1; std::getline(in, line); ++number) {
+      std::string_view text(line);
+      if (const auto hash = text.find('#'); hash != std::string_view::npos) text = text.substr(0, hash);
+      const auto fields = split_fields(text);
+      if (fields.empty()) continue;
+      double v = -1;
+      if (fields.size() != 1 || !parse_number(fields[0], v) || !(v >= 0 && v <= max_block_id && v == std::floor(v)))
+        throw Error(path + ":" + std::to_string(number) + ": expected one block id (an integer from 0 to 2^31 - 1)");
+      values.push_back(v);
+    }
+  }
+  if (values.size() != points)
+    throw Error(path + ": " + std::to_string(values.size()) + " block ids for " + std::to_string(points) + " points");
+  return std::vector<std::int32_t>(values.begin(), values.end());
+}
 
 PointSet read_points(const std::string& path) {
   return ends_with(path, ".npy") ? points_from_npy(path) : points_from_text(path);

@@ -85,6 +85,11 @@ void write_vtk(const std::string& path, const PointSet& points, const NeighborLi
       " <UnstructuredGrid>\n  <Piece NumberOfPoints=\"" + std::to_string(n) + "\" NumberOfCells=\"" +
       std::to_string(types.size()) + "\">\n   <PointData Scalars=\"family_size\">\n";
   data.add("    <DataArray type=\"Int64\" Name=\"family_size\"", family);
+  if (!points.blocks.empty()) {
+    if (points.blocks.size() != n)
+      throw Error(path + ": " + std::to_string(points.blocks.size()) + " block ids for " + std::to_string(n) + " points");
+    data.add("    <DataArray type=\"Int32\" Name=\"block\"", points.blocks);
+  }
   xml += data.take_xml() + "   </PointData>\n   <Points>\n";
   data.add("    <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\"", xyz);
   xml += data.take_xml() + "   </Points>\n   <Cells>\n";
