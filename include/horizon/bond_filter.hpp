@@ -63,4 +63,7 @@ inline double bond_reach(const SearchOptions& options, int dims) {
 /// filter and the key.
 std::vector<BondFilter> read_bond_filters(const std::string& path);
 
+/// The same from JSON text; errors name `source` (e.g. the file or the argument it came from).
+std::vector<BondFilter> parse_bond_filters(const std::string& json, const std::string& source);
+
 }  // namespace horizon

@@ -10,6 +10,7 @@
 The list is exact (the same bits from every backend) and rows are sorted by id unless
 sort_rows=False. Errors raise ValueError (bad input) or MemoryError with horizon's message.
 """
+import json
 import os
 
 import numpy as np
@@ -70,16 +71,57 @@ class NeighborList:
         columns = n if self.references is None else self.references
         return csr_matrix((np.ones(self.total, dtype=np.int8), self.indices, self.offsets), shape=(n, columns))
 
-    def save_vtk(self, path, points, bonds=False):
+    def save_vtk(self, path, points, bonds=False, blocks=None):
         """Writes `points` with each family's size (point data "family_size") for ParaView, as
         `horizon search --vtk` does: a VTK XML .vtu file, written to a temporary name and renamed.
-        bonds=True adds every pair as a line cell (at most 10**7)."""
+        bonds=True adds every pair as a line cell (at most 10**7); blocks (a block id per point)
+        adds point data "block"."""
         if bonds and self.references is not None:
             raise ValueError("bonds=True: the rows of a query list index the references; bonds would join unrelated points")
         array = _host_points(points)
         if len(array) != len(self):
             raise ValueError(f"points has {len(array)} rows, the list {len(self)}")
-        _horizon.write_vtk(os.fspath(path), array, self.offsets, self.indices, self.half, bool(bonds))
+        block_ids = [] if blocks is None else _block_ids(blocks, len(self))
+        _horizon.write_vtk(os.fspath(path), array, self.offsets, self.indices, self.half, bool(bonds), block_ids)
+
+    def filter_bonds(self, points, filters, references=None, threads=0):
+        """This list without the bonds whose segment x_i -> x_j crosses one of `filters`
+        (Peridigm's shapes, pre-notched cracks; `horizon search --bond-filters`), rows in order.
+        filters: a list of {"type": "rectangle", "normal": [3], "lower_left_corner": [3],
+        "bottom_unit_vector": [3], "bottom_length": b, "side_length": a} and {"type": "disk",
+        "center": [3], "normal": [3], "radius": r} (NumPy arrays allowed), or the path of a JSON
+        file of them. points: the list's points (2-D points lie in z = 0); references: the
+        reference points of a query list."""
+        if (references is None) != (self.references is None):
+            raise ValueError("references= is needed exactly for a list searched against references")
+        array = _host_points(points)
+        if len(array) != len(self):
+            raise ValueError(f"points has {len(array)} rows, the list {len(self)}")
+        reference_array = None if references is None else _host_points(references, "references")
+        if isinstance(filters, (str, os.PathLike)):
+            source = os.fspath(filters)
+            with open(source) as file:
+                text = file.read()
+        else:
+            source = "filters"
+            text = json.dumps(list(filters), default=lambda value: np.asarray(value).tolist())
+        owned = _horizon.filter_bonds(self.offsets, self.indices, self.half, array, reference_array, text, source,
+                                      int(threads))
+        return NeighborList(owned.offsets, owned.indices, self.half, self.references)
+
+    def filter_blocks(self, blocks, pairs, reference_blocks=None, threads=0):
+        """This list with only the bonds between blocks that are one of `pairs` (Peridigm's block
+        rules; `horizon search --block-pairs`), rows in order. blocks: a block id (integer >= 0)
+        per point; pairs: "1-1,1-2" or [(1, 1), (1, 2)] (unordered); reference_blocks: the
+        blocks of a query list's references."""
+        if (reference_blocks is None) != (self.references is None):
+            raise ValueError("reference_blocks= is needed exactly for a list searched against references")
+        rows = _block_ids(blocks, len(self))
+        columns = rows if reference_blocks is None else _block_ids(reference_blocks, self.references, "reference_blocks")
+        if not isinstance(pairs, str):
+            pairs = ",".join(f"{int(a)}-{int(b)}" for a, b in pairs)
+        owned = _horizon.filter_blocks(self.offsets, self.indices, self.half, rows, columns, pairs, int(threads))
+        return NeighborList(owned.offsets, owned.indices, self.half, self.references)
 
     def save(self, prefix):
         """Writes PREFIX.offsets.npy and PREFIX.indices.npy, as the CLI does: each written to a
@@ -178,6 +220,16 @@ def _host_points(points, name="points"):
             raise ValueError(f"{name} must be numbers, not {array.dtype}")
         array = array.astype(np.float64)
     return np.ascontiguousarray(array)  # AoS is what horizon reads
+
+
+def _block_ids(blocks, count, name="blocks"):
+    """blocks as the list of int32 block ids horizon takes, checked."""
+    array = np.asarray(blocks)
+    if array.shape != (count,) or not np.issubdtype(array.dtype, np.integer):
+        raise ValueError(f"{name} must be {count} integer block ids, not an array of shape {array.shape} and dtype {array.dtype}")
+    if count and (array.min() < 0 or array.max() > 2**31 - 1):
+        raise ValueError(f"{name}: block ids must lie in 0 .. 2**31 - 1")
+    return array.astype(np.int32).tolist()
 
 
 def _periods(box, dims):

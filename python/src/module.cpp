@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "horizon/block_filter.hpp"
+#include "horizon/bond_filter.hpp"
 #include "horizon/cuda.hpp"
 #include "horizon/generate.hpp"
 #include "horizon/io.hpp"
@@ -82,15 +84,43 @@ OwnedList search(py::array points, double horizon, const std::string& metric, bo
   return OwnedList{horizon::search(view, options)};
 }
 
-/// The list (copied from NumPy's int64 offsets and int32 indices) and its points to a .vtu file.
-void write_vtk(const std::string& path, py::array points, py::array_t<std::int64_t> offsets,
-               py::array_t<std::int32_t> indices, bool half, bool bonds) {
-  const horizon::PointSet set = horizon::to_point_set(point_view(points));
+/// A list copied from NumPy's int64 offsets and int32 indices.
+horizon::NeighborList list_of(const py::array_t<std::int64_t>& offsets, const py::array_t<std::int32_t>& indices,
+                              bool half) {
   horizon::Buffer<std::int64_t> row_offsets(offsets.data(), offsets.data() + offsets.size());
   horizon::Buffer<horizon::point_id> row_indices(indices.data(), indices.data() + indices.size());
-  const horizon::NeighborList list(std::move(row_offsets), std::move(row_indices), half);
+  return horizon::NeighborList(std::move(row_offsets), std::move(row_indices), half);
+}
+
+/// The list and its points (and their blocks, when given) to a .vtu file.
+void write_vtk(const std::string& path, py::array points, py::array_t<std::int64_t> offsets,
+               py::array_t<std::int32_t> indices, bool half, bool bonds, std::vector<std::int32_t> blocks) {
+  horizon::PointSet set = horizon::to_point_set(point_view(points));
+  set.blocks = std::move(blocks);
+  const horizon::NeighborList list = list_of(offsets, indices, half);
   py::gil_scoped_release unlocked;
   horizon::write_vtk(path, set, list, bonds);
+}
+
+/// The list without the bonds crossing the filters (JSON text, named `source` in errors).
+OwnedList filter_bonds(py::array_t<std::int64_t> offsets, py::array_t<std::int32_t> indices, bool half,
+                       py::array points, std::optional<py::array> references, const std::string& json,
+                       const std::string& source, int threads) {
+  const auto filters = horizon::parse_bond_filters(json, source);
+  const horizon::NeighborList list = list_of(offsets, indices, half);
+  const horizon::PointView rows = point_view(points), columns = references ? point_view(*references) : rows;
+  py::gil_scoped_release unlocked;
+  return OwnedList{horizon::filter_bonds(list, rows, columns, filters, 0, threads)};
+}
+
+/// The list without the bonds between blocks that are not one of `pairs` ("1-1,1-2").
+OwnedList filter_blocks(py::array_t<std::int64_t> offsets, py::array_t<std::int32_t> indices, bool half,
+                        const std::vector<std::int32_t>& blocks, const std::vector<std::int32_t>& reference_blocks,
+                        const std::string& pairs, int threads) {
+  const horizon::BlockPairs block_pairs = horizon::BlockPairs::parse(pairs);
+  const horizon::NeighborList list = list_of(offsets, indices, half);
+  py::gil_scoped_release unlocked;
+  return OwnedList{horizon::filter_blocks(list, blocks, reference_blocks, block_pairs, threads)};
 }
 
 /// points: `count` x `dims` C-contiguous float64 in GPU memory at `pointer`; the list is built on
@@ -158,7 +188,11 @@ PYBIND11_MODULE(_horizon, m) {
         py::arg("sort_rows"), py::arg("backend"), py::arg("threads"), py::arg("device"), py::arg("devices"),
         py::arg("cells_per_horizon"), py::arg("box"), py::arg("references"));
   m.def("write_vtk", &write_vtk, py::arg("path"), py::arg("points"), py::arg("offsets"), py::arg("indices"),
-        py::arg("half"), py::arg("bonds"));
+        py::arg("half"), py::arg("bonds"), py::arg("blocks"));
+  m.def("filter_bonds", &filter_bonds, py::arg("offsets"), py::arg("indices"), py::arg("half"), py::arg("points"),
+        py::arg("references"), py::arg("json"), py::arg("source"), py::arg("threads"));
+  m.def("filter_blocks", &filter_blocks, py::arg("offsets"), py::arg("indices"), py::arg("half"), py::arg("blocks"),
+        py::arg("reference_blocks"), py::arg("pairs"), py::arg("threads"));
   m.def("lattice", [](int n, int dims, double side) { return to_array(horizon::lattice(n, dims, side)); });
   m.def("random_cloud", [](std::size_t count, int dims, std::uint64_t seed, double side) {
     return to_array(horizon::random_cloud(count, dims, seed, side));

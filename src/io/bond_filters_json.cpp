@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include "horizon/bond_filter.hpp"
@@ -76,23 +77,27 @@ BondFilter read_filter(const FilterReader& in, const nlohmann::json& object) {
 
 }  // namespace
 
-std::vector<BondFilter> read_bond_filters(const std::string& path) {
-  std::ifstream file(path);
-  if (!file) throw Error(path + ": cannot read the bond filters (no such file?)");
+std::vector<BondFilter> parse_bond_filters(const std::string& json, const std::string& source) {
   nlohmann::json document;
   try {
-    document = nlohmann::json::parse(file);
+    document = nlohmann::json::parse(json);
   } catch (const nlohmann::json::exception& e) {  // parse_error, and out_of_range for huge numbers
-    throw Error(path + ": not valid JSON (" + std::string(e.what()) + ")");
+    throw Error(source + ": not valid JSON (" + std::string(e.what()) + ")");
   }
-  if (!document.is_array()) throw Error(path + ": expected a JSON array of filters");
+  if (!document.is_array()) throw Error(source + ": expected a JSON array of filters");
   if (document.size() > max_bond_filters)
-    throw Error(path + ": " + std::to_string(document.size()) + " filters, at most " +
+    throw Error(source + ": " + std::to_string(document.size()) + " filters, at most " +
                 std::to_string(max_bond_filters) + " are supported");
   std::vector<BondFilter> filters;
   for (std::size_t i = 0; i < document.size(); ++i)
-    filters.push_back(read_filter(FilterReader(path, i, document[i]), document[i]));
+    filters.push_back(read_filter(FilterReader(source, i, document[i]), document[i]));
   return filters;
+}
+
+std::vector<BondFilter> read_bond_filters(const std::string& path) {
+  std::ifstream file(path);
+  if (!file) throw Error(path + ": cannot read the bond filters (no such file?)");
+  return parse_bond_filters(std::string(std::istreambuf_iterator<char>(file), {}), path);
 }
 
 }  // namespace horizon

@@ -227,3 +227,65 @@ def test_save_vtk_of_a_half_list_draws_each_pair_once(tmp_path):
     half.save_vtk(tmp_path / "half.vtu", points, bonds=True)
     lines = {block.type: block.data for block in meshio.read(tmp_path / "half.vtu").cells}["line"]
     assert np.array_equal(lines, horizon.search(points, 1.3).pairs())
+
+
+def _segment_crosses_plane_x(points, pairs, x0):
+    """Brute force for a disk in the plane x = x0 wider than the cloud: ends on opposite sides, or one on it."""
+    a, b = points[pairs[:, 0], 0] - x0, points[pairs[:, 1], 0] - x0
+    return ((a < 0) & (b > 0)) | ((a > 0) & (b < 0)) | ((a == 0) != (b == 0))
+
+
+@pytest.mark.parametrize("half", [False, True])
+def test_filter_bonds_drops_the_bonds_a_crack_crosses(tmp_path, half):
+    points = horizon.random_cloud(2000, seed=9)
+    nl = horizon.search(points, 1.0, half=half)
+    crack = [{"type": "disk", "center": np.array([5.0, 5.0, 5.0]), "normal": [1, 0, 0], "radius": 100.0}]
+    kept = nl.filter_bonds(points, crack)
+    pairs = nl.pairs()
+    expected = pairs[~_segment_crosses_plane_x(points, pairs, 5.0)]
+    assert np.array_equal(kept.pairs(), expected)
+    assert kept.half == half and 0 < kept.total < nl.total
+    (tmp_path / "crack.json").write_text('[{"type": "disk", "center": [5, 5, 5], "normal": [1, 0, 0], "radius": 100}]')
+    assert np.array_equal(nl.filter_bonds(points, tmp_path / "crack.json").indices, kept.indices)
+    with pytest.raises(ValueError, match="filters: filter 0: missing key 'radius'"):
+        nl.filter_bonds(points, [{"type": "disk", "center": [0, 0, 0], "normal": [0, 0, 1]}])
+    with pytest.raises(ValueError, match="rows"):
+        nl.filter_bonds(points[:10], crack)
+
+
+def test_filter_blocks_keeps_the_pairs_and_writes_blocks_to_vtk(tmp_path):
+    points = horizon.random_cloud(1500, seed=10)
+    blocks = (points[:, 0] > 5).astype(np.int64) + 1  # block 1 left of x = 5, block 2 right
+    nl = horizon.search(points, 1.0)
+    kept = nl.filter_blocks(blocks, "1-1,2-2")
+    pairs = nl.pairs()
+    assert np.array_equal(kept.pairs(), pairs[blocks[pairs[:, 0]] == blocks[pairs[:, 1]]])
+    assert np.array_equal(nl.filter_blocks(blocks, [(1, 1), (2, 2)]).indices, kept.indices)
+    assert nl.filter_blocks(blocks, "1-2,1-1,2-2").total == nl.total
+    with pytest.raises(ValueError, match="no point is in block 3"):
+        nl.filter_blocks(blocks, "1-3")
+    with pytest.raises(ValueError, match="integer block ids"):
+        nl.filter_blocks(blocks[:5], "1-1")
+    meshio = pytest.importorskip("meshio")
+    kept.save_vtk(tmp_path / "blocks.vtu", points, blocks=blocks)
+    assert np.array_equal(meshio.read(tmp_path / "blocks.vtu").point_data["block"], blocks)
+
+
+def test_filters_of_a_query_list_use_the_references():
+    queries, references = horizon.random_cloud(300, seed=11), horizon.random_cloud(1000, seed=12)
+    nl = horizon.search(queries, 1.2, references=references)
+    query_blocks, reference_blocks = np.arange(300) % 2, np.arange(1000) % 3
+    kept = nl.filter_blocks(query_blocks, "0-0,1-2", reference_blocks=reference_blocks)
+    for i in range(0, 300, 37):
+        row = nl.row(i)
+        allowed = {0: {0}, 1: {2}}[query_blocks[i]]
+        assert np.array_equal(kept.row(i), row[np.isin(reference_blocks[row], list(allowed))])
+    crack = [{"type": "disk", "center": [5, 5, 5], "normal": [1, 0, 0], "radius": 100}]
+    cut = nl.filter_bonds(queries, crack, references=references)
+    for i in range(0, 300, 37):
+        row = nl.row(i)
+        a, b = queries[i, 0] - 5, references[row, 0] - 5
+        crosses = ((a < 0) & (b > 0)) | ((a > 0) & (b < 0)) | ((a == 0) != (b == 0))
+        assert np.array_equal(cut.row(i), row[~crosses])
+    with pytest.raises(ValueError, match="references="):
+        nl.filter_bonds(queries, crack)
