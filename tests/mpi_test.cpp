@@ -136,7 +136,8 @@ TEST(Distributed, RandomProblemsAgreeWithTheOracle) {
   std::mt19937_64 rng(seed());
   for (int n = 0; n < problem_count(); ++n) {
     Problem p = draw(rng);
-    p.options.queries = 0;  // every point of a distributed search gets its row
+    p.options.queries = 0;       // every point of a distributed search gets its row
+    p.options.box = {0, 0, 0};  // the distributed layer searches open boxes
     const Strategy& s = strategies[static_cast<std::size_t>(n) % std::size(strategies)];
     DistributedOptions options;
     options.search = p.options;

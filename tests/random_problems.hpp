@@ -1,8 +1,11 @@
 #pragma once
 // Small random problems for differential testing (tests/differential_test.cpp, and the MPI
-// layer in tests/mpi_test.cpp): drawn from a seed, aimed at what nobody writes down.
+// layer in tests/mpi_test.cpp): drawn from a seed, aimed at what nobody writes down, now and
+// then in a periodic box.
 #include <cmath>
+#include <algorithm>
 #include <cstdlib>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <string>
@@ -22,6 +25,8 @@ struct Problem {
     out << xyz.size() / dims << " points, " << dims << "-D, horizon " << options.horizon << ", "
         << metric_name(options.metric) << ", k " << options.cells_per_horizon << (options.half ? ", half" : "")
         << (single ? ", float32" : "") << (options.queries ? ", queries " + std::to_string(options.queries) : "");
+    if (options.box[0] > 0 || options.box[1] > 0 || options.box[2] > 0)
+      out << ", box " << options.box[0] << "," << options.box[1] << "," << options.box[2];
     return out.str();
   }
 };
@@ -57,9 +62,25 @@ inline Problem draw(std::mt19937_64& rng) {
     }
     for (int a = 0; a < p.dims; ++a) p.xyz.push_back(x[a] + offset);
   }
+  if (offset == 0 && pick(6) == 0) {  // a periodic box: some axes periodic, points wrapped into [0, L)
+    for (int a = 0; a < p.dims; ++a)
+      p.options.box[static_cast<std::size_t>(a)] = pick(3) ? side * uniform(0.5, 1.5) : 0.0;
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < p.dims; ++a) {
+      const double period = p.options.box[static_cast<std::size_t>(a)];
+      if (period == 0) continue;
+      shortest = std::min(shortest, period);
+      for (std::size_t i = static_cast<std::size_t>(a); i < p.xyz.size(); i += static_cast<std::size_t>(p.dims)) {
+        p.xyz[i] = std::fmod(p.xyz[i], period);
+        if (p.single && static_cast<double>(static_cast<float>(p.xyz[i])) >= period) p.xyz[i] = 0.0;
+      }
+    }
+    p.options.horizon = std::min(p.options.horizon, 0.49 * shortest);
+  }
   if (p.single)
     for (double& v : p.xyz) v = static_cast<double>(static_cast<float>(v));
-  if (count > 0 && pick(6) == 0) p.options.queries = static_cast<std::size_t>(1 + pick(count));
+  const bool periodic = p.options.box[0] > 0 || p.options.box[1] > 0 || p.options.box[2] > 0;
+  if (count > 0 && !periodic && pick(6) == 0) p.options.queries = static_cast<std::size_t>(1 + pick(count));
   return p;
 }
 
