@@ -8,6 +8,8 @@
 // sets the count (default 1000), HORIZON_DIFFERENTIAL_SEED the seed (to run shards in parallel).
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <string>
 #include <vector>
 
 #include "assemble_batches.hpp"
@@ -42,6 +44,10 @@ TEST(Differential, EveryBackendAgreesWithTheOracleOnRandomProblems) {
         << "problem " << n << " (" << p.describe() << "), in batches of " << batch_entries;
   }
   EXPECT_EQ(compared, static_cast<int>(backends.size()) * problem_count());
+  std::string names;
+  for (Backend backend : backends) names += std::string(" ") + backend_name(backend);
+  std::printf("compared %d problems of seed %llu with the oracle on%s and in batches\n", problem_count(),
+              static_cast<unsigned long long>(seed()), names.c_str());
 }
 
 }  // namespace
