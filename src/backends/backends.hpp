@@ -4,6 +4,9 @@
 
 namespace horizon::detail {
 
+/// What search(points, options) checks before it picks a backend: Error otherwise.
+void validate_search(PointView points, const SearchOptions& options);
+
 NeighborList search_serial(PointView points, const SearchOptions& options, SearchStats& stats);
 NeighborList search_openmp(PointView points, const SearchOptions& options, SearchStats& stats);
 bool openmp_built();

@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include "../backends/backends.hpp"
 #include "family_search.hpp"
 #include "reference_search.hpp"
 #include "horizon/error.hpp"
@@ -12,14 +13,10 @@ namespace horizon {
 
 void search_in_batches(PointView points, const SearchOptions& options, std::int64_t batch_entries,
                        const RowBatchSink& sink, SearchStats* stats) {
-  validate(points);
-  validate_horizon(options.horizon, options.cells_per_horizon);
+  detail::validate_search(points, options);
   if (options.backend == Backend::cuda || !options.devices.empty())
     throw Error("a list in batches is built on the CPU backends (serial, openmp), not cuda");
   if (detail::is_periodic(options)) throw Error("a list in batches is not built for a periodic box");
-  if (options.queries > points.size())
-    throw Error("queries (" + std::to_string(options.queries) + ") exceeds the " + std::to_string(points.size()) +
-                " points");
   SearchStats local;
   SearchStats& out = stats ? *stats : local;
   out = SearchStats{};

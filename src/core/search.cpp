@@ -39,12 +39,16 @@ bool backend_available(Backend backend) {
 
 const char* cpu_simd_target() { return detail::simd_target(); }
 
-NeighborList search(PointView points, const SearchOptions& options, SearchStats* stats) {
+void detail::validate_search(PointView points, const SearchOptions& options) {
   validate(points);
   validate_horizon(options.horizon, options.cells_per_horizon);
   if (options.queries > points.size())
     throw Error("queries (" + std::to_string(options.queries) + ") exceeds the " + std::to_string(points.size()) +
                 " points");
+}
+
+NeighborList search(PointView points, const SearchOptions& options, SearchStats* stats) {
+  detail::validate_search(points, options);
   SearchStats local;
   SearchStats& out = stats ? *stats : local;
   out = SearchStats{};

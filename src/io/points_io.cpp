@@ -60,19 +60,27 @@ bool parse_number(std::string_view field, double& value) {
 
 constexpr double max_block_id = 2147483647.0;
 
-// Text: `x y [z]` points, or Peridigm's `x y z block_id volume` (the first three columns).
-PointSet points_from_text(const std::string& path) {
+/// visit(fields, line number) for every line of the text file `path` that has fields once its
+/// `#` comment is dropped.
+template <class Visit>
+void for_each_line(const std::string& path, Visit visit) {
   std::ifstream in(path);
   if (!in) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
-  PointSet set{0, {}};
-  std::size_t columns = 0;
-  bool header_seen = false;
   std::string line;
   for (std::size_t number = 1; std::getline(in, line); ++number) {
     std::string_view text(line);
     if (const auto hash = text.find('#'); hash != std::string_view::npos) text = text.substr(0, hash);
     const auto fields = split_fields(text);
-    if (fields.empty()) continue;
+    if (!fields.empty()) visit(fields, number);
+  }
+}
+
+// Text: `x y [z]` points, or Peridigm's `x y z block_id volume` (the first three columns).
+PointSet points_from_text(const std::string& path) {
+  PointSet set{0, {}};
+  std::size_t columns = 0;
+  bool header_seen = false;
+  for_each_line(path, [&](const std::vector<std::string_view>& fields, std::size_t number) {
     const std::string where = path + ":" + std::to_string(number) + ": ";
     double values[5];
     if (columns == 0) {
@@ -81,7 +89,7 @@ PointSet points_from_text(const std::string& path) {
       for (const auto field : fields) names_only = names_only && !parse_number(field, values[0]);
       if (names_only) {
         header_seen = true;
-        continue;
+        return;
       }
       if (fields.size() != 2 && fields.size() != 3 && fields.size() != 5)
         throw Error(where + "expected 2 or 3 columns (x y [z]) or 5 (Peridigm: x y z block volume), found " +
@@ -105,7 +113,7 @@ PointSet points_from_text(const std::string& path) {
         throw Error(where + "block id '" + std::string(fields[3]) + "' is not an integer from 0 to 2^31 - 1");
       set.blocks.push_back(static_cast<std::int32_t>(values[3]));
     }
-  }
+  });
   if (set.dims == 0) set.dims = 3;  // an empty file: no points
   return set;
 }
@@ -132,19 +140,12 @@ std::vector<std::int32_t> read_blocks(const std::string& path, std::size_t point
       values.push_back(static_cast<double>(v));
     }
   } else {
-    std::ifstream in(path);
-    if (!in) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
-    std::string line;
-    for (std::size_t number = 1; std::getline(in, line); ++number) {
-      std::string_view text(line);
-      if (const auto hash = text.find('#'); hash != std::string_view::npos) text = text.substr(0, hash);
-      const auto fields = split_fields(text);
-      if (fields.empty()) continue;
+    for_each_line(path, [&](const std::vector<std::string_view>& fields, std::size_t number) {
       double v = -1;
       if (fields.size() != 1 || !parse_number(fields[0], v) || !(v >= 0 && v <= max_block_id && v == std::floor(v)))
         throw Error(path + ":" + std::to_string(number) + ": expected one block id (an integer from 0 to 2^31 - 1)");
       values.push_back(v);
-    }
+    });
   }
   if (values.size() != points)
     throw Error(path + ": " + std::to_string(values.size()) + " block ids for " + std::to_string(points) + " points");
