@@ -20,6 +20,12 @@ public:
 
   [[noreturn]] void fail(const std::string& what) const { throw Error(where_ + ": " + what); }
 
+  static std::string quoted(const char* key) {  // built by append: GCC 12 warns (-Wrestrict) on "'" + key
+    std::string text(1, '\'');
+    text.append(key).push_back('\'');
+    return text;
+  }
+
   const nlohmann::json& field(const char* key) const {
     if (!object_.contains(key)) fail("missing key '" + std::string(key) + "'");
     return object_.at(key);
@@ -27,20 +33,20 @@ public:
 
   double number(const char* key, bool positive) const {
     const nlohmann::json& value = field(key);
-    if (!value.is_number()) fail("'" + std::string(key) + "' must be a number");
+    if (!value.is_number()) fail(quoted(key) + " must be a number");
     const double x = value.get<double>();
-    if (!std::isfinite(x) || (positive && !(x > 0))) fail("'" + std::string(key) + "' must be finite and > 0");
+    if (!std::isfinite(x) || (positive && !(x > 0))) fail(quoted(key) + " must be finite and > 0");
     return x;
   }
 
   std::array<double, 3> vector(const char* key, bool unit) const {
     const nlohmann::json& value = field(key);
-    if (!value.is_array() || value.size() != 3) fail("'" + std::string(key) + "' must be an array of 3 numbers");
+    if (!value.is_array() || value.size() != 3) fail(quoted(key) + " must be an array of 3 numbers");
     std::array<double, 3> v{};
     for (int a = 0; a < 3; ++a) {
-      if (!value[a].is_number()) fail("'" + std::string(key) + "' must be an array of 3 numbers");
+      if (!value[a].is_number()) fail(quoted(key) + " must be an array of 3 numbers");
       v[a] = value[a].get<double>();
-      if (!std::isfinite(v[a])) fail("'" + std::string(key) + "' must be finite");
+      if (!std::isfinite(v[a])) fail(quoted(key) + " must be finite");
     }
     if (unit) {
       // Scaled first, so that components near the largest double do not overflow the length.
@@ -48,7 +54,7 @@ public:
       if (largest > 0)
         for (double& x : v) x /= largest;
       const double length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-      if (!(length > 0)) fail("'" + std::string(key) + "' must not be the zero vector");
+      if (!(length > 0)) fail(quoted(key) + " must not be the zero vector");
       for (double& x : v) x /= length;
     }
     return v;
