@@ -44,22 +44,18 @@ void CellIndex::sort_dense(PointView points, int threads) {
   start_by_id_.assign(static_cast<std::size_t>(cells) + 1, 0);
   std::vector<std::int64_t> id(count_);
   std::int64_t* start = start_by_id_.data();
-  // One thread: plain increments (a locked add per point cost as much as the rest of the sort).
-  const bool serial = threads <= 1;
-#pragma omp parallel for schedule(static) num_threads(threads) if (!serial)
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
   for (std::int64_t i = 0; i < n; ++i) {
     const auto c = cell_of_point(points, grid_, static_cast<std::size_t>(i));
     id[i] = grid_.linear_id(c[0], c[1], c[2]);
-    if (serial) ++start[id[i] + 1];
-    else std::atomic_ref<std::int64_t>(start[id[i] + 1]).fetch_add(1, std::memory_order_relaxed);
+    std::atomic_ref<std::int64_t>(start[id[i] + 1]).fetch_add(1, std::memory_order_relaxed);
   }
   detail::inclusive_scan(start_by_id_.data(), start_by_id_.size(), threads);
 
   std::vector<std::int64_t> next(start_by_id_.begin(), start_by_id_.end() - 1);
-#pragma omp parallel for schedule(static) num_threads(threads) if (!serial)
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
   for (std::int64_t i = 0; i < n; ++i) {
-    const std::int64_t at = serial ? next[id[i]]++
-                                   : std::atomic_ref<std::int64_t>(next[id[i]]).fetch_add(1, std::memory_order_relaxed);
+    const std::int64_t at = std::atomic_ref<std::int64_t>(next[id[i]]).fetch_add(1, std::memory_order_relaxed);
     order_[at] = static_cast<point_id>(i);
   }
 
