@@ -62,4 +62,26 @@ set +e
 status=$?
 set -e
 [ "$status" -ne 0 ] && grep -q "missing.npy: cannot open" error.txt
+# Bond filters, block pairs and ParaView output under mpirun: applied on rank 0 to the gathered
+# list, the same files as one node; refused with the parallel writer.
+printf '[{"type": "disk", "center": [5, 5, 5], "normal": [1, 0, 0], "radius": 3}]' > disk.json
+awk 'BEGIN { for (i = 0; i < 20000; i++) print i % 2 }' > blocks.txt
+filtering="--bond-filters disk.json --blocks blocks.txt --block-pairs 0-0,1-1"
+"$horizon" search points.npy --horizon 0.25 --backend serial $filtering --out filtered --vtk filtered.vtu --quiet
+"$mpiexec" --oversubscribe -np 3 "$horizon" search points.npy --horizon 0.25 --exchange halo $filtering \
+  --out mpi_filtered --vtk mpi_filtered.vtu --json --quiet > mpi_filtered.json
+grep -q '"bonds_cut"' mpi_filtered.json && grep -q '"block_pairs":2' mpi_filtered.json
+cmp filtered.offsets.npy mpi_filtered.offsets.npy
+cmp filtered.indices.npy mpi_filtered.indices.npy
+cmp filtered.vtu mpi_filtered.vtu
+set +e
+"$mpiexec" --oversubscribe -np 2 "$horizon" search points.npy --horizon 0.25 --exchange halo --writer parallel \
+  $filtering --out p 2> parallel_filter_error.txt
+status=$?
+"$mpiexec" --oversubscribe -np 2 "$horizon" search points.npy --horizon 0.25 --exchange halo --blocks blocks.txt \
+  --block-pairs 0-7 2> pair_error.txt
+pair_status=$?
+set -e
+[ "$status" -ne 0 ] && grep -q "need the whole list on rank 0" parallel_filter_error.txt
+[ "$pair_status" -ne 0 ] && grep -q "no point is in block 7" pair_error.txt
 echo "mpirun CLI: all strategies and both writers identical to serial"

@@ -9,6 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "horizon/block_filter.hpp"
+#include "horizon/bond_filter.hpp"
 #include "horizon/cuda.hpp"
 #include "horizon/distributed.hpp"
 #include "horizon/error.hpp"
@@ -61,11 +63,21 @@ void run_distributed(const SearchArgs& args) {
   check_output(args);
   if (!args.box.empty() || !args.queries.empty())
     throw Error("--box and --queries are not supported under mpirun yet: run them without mpirun (one node, any backend)");
-  if (!args.vtk.empty() || !args.bond_filters.empty() || !args.block_pairs.empty())
-    throw Error("--vtk, --bond-filters and --block-pairs are not supported under mpirun yet: run them without mpirun (one node, any backend)");
+  if (args.writer == "parallel" && (!args.vtk.empty() || !args.bond_filters.empty() || !args.block_pairs.empty()))
+    throw Error("--vtk, --bond-filters and --block-pairs need the whole list on rank 0: use --writer gather (or auto)");
   const Progress progress(args.quiet || rank != 0);
   Stopwatch clock;
-  const PointSet all = load_input(args.input);
+  PointSet all = load_input(args.input);
+  if (!args.blocks.empty()) all.blocks = read_blocks(args.blocks, all.size());
+  // Every rank reads the filters, so bad ones are refused before the search, by all ranks alike.
+  const std::vector<BondFilter> filters =
+      args.bond_filters.empty() ? std::vector<BondFilter>{} : read_bond_filters(args.bond_filters);
+  const BlockPairs block_pairs = args.block_pairs.empty() ? BlockPairs{} : BlockPairs::parse(args.block_pairs);
+  if (!args.block_pairs.empty() && all.blocks.empty())
+    throw Error("--block-pairs needs a block per point: --blocks FILE, or a Peridigm input (x y z block volume)");
+  if (!block_pairs.pairs.empty())  // the pairs checked against the blocks on every rank (a list without bonds)
+    filter_blocks(NeighborList(Buffer<std::int64_t>(all.size() + 1, 0), {}, false), all.blocks, block_pairs, 1);
+  const bool on_rank0 = !args.vtk.empty() || !filters.empty() || !block_pairs.pairs.empty();  // whole list needed
   const double read_seconds = clock.lap();
 
   DistributedOptions options;
@@ -94,19 +106,33 @@ void run_distributed(const SearchArgs& args) {
   std::int64_t total = 0;
   const std::int64_t mine = rows.rows.total();
   MPI_Allreduce(&mine, &total, 1, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
-  const bool parallel = !args.out.empty() && write_in_parallel(args, total, options.search);
+  const bool parallel = !args.out.empty() && !on_rank0 && write_in_parallel(args, total, options.search);
+  const std::int64_t unfiltered = total;
+  double filter_seconds = 0;
   if (!args.out.empty() && parallel) {
     written = write_rows_parallel(MPI_COMM_WORLD, rows, n, args.out);
-  } else if (!args.out.empty()) {
-    const NeighborList list = gather_rows(MPI_COMM_WORLD, rows, n, options.search.half);
+  } else if (!args.out.empty() || on_rank0) {
+    NeighborList list = gather_rows(MPI_COMM_WORLD, rows, n, options.search.half);
     stats.gather = clock.lap();
-    if (rank == 0) written = write_neighbor_list(args.out, list, args.format == "csv" ? ListFormat::csv : ListFormat::npy);
+    if (rank == 0) {
+      // Filters and ParaView output on rank 0, as a one-node search applies them.
+      if (!filters.empty()) list = filter_bonds(list, all.view(), filters, bond_reach(options.search, all.dims), args.threads);
+      if (!block_pairs.pairs.empty()) list = filter_blocks(list, all.blocks, block_pairs, args.threads);
+      total = list.total();
+      filter_seconds = clock.lap();
+      if (!args.out.empty())
+        written = write_neighbor_list(args.out, list, args.format == "csv" ? ListFormat::csv : ListFormat::npy);
+      if (!args.vtk.empty()) {
+        write_vtk(args.vtk, all, list, args.vtk_bonds);
+        written += (written.empty() ? "" : ",") + args.vtk;
+      }
+    }
   }
   const double write_seconds = clock.lap();
   if (rank != 0) return;
   const double build = stats.preprocess + stats.decompose + stats.communicate + stats.search;
   if (args.json) {
-    const nlohmann::json report = {
+    nlohmann::json report = {
         {"points", n}, {"dims", all.dims}, {"horizon", args.horizon}, {"metric", args.metric},
         {"cells_per_horizon", args.cells_per_horizon}, {"half", args.half}, {"neighbors", total},
         {"backend", args.backend}, {"threads", args.threads}, {"ranks", size},
@@ -115,11 +141,15 @@ void run_distributed(const SearchArgs& args) {
         {"seconds",
          {{"read", read_seconds}, {"preprocess", stats.preprocess}, {"decompose", stats.decompose},
           {"communicate", stats.communicate}, {"search", stats.search}, {"gather", stats.gather},
-          {"write", write_seconds}, {"total", read_seconds + build + stats.gather + write_seconds}}},
+          {"filter", filter_seconds}, {"write", write_seconds},
+          {"total", read_seconds + build + stats.gather + filter_seconds + write_seconds}}},
         {"bytes_sent", stats.bytes_sent}, {"messages_sent", stats.messages_sent},
         {"max_bytes_sent", stats.max_bytes_sent}, {"max_messages_sent", stats.max_messages_sent},
         {"ghosts", stats.ghosts}, {"owned_min", stats.min_owned}, {"owned_max", stats.max_owned},
         {"points_per_second", build > 0 ? static_cast<double>(n) / build : 0.0}, {"outputs", written}};
+    if (!filters.empty()) report["bond_filters"] = filters.size();
+    if (!block_pairs.pairs.empty()) report["block_pairs"] = block_pairs.pairs.size();
+    if (!filters.empty() || !block_pairs.pairs.empty()) report["bonds_cut"] = unfiltered - total;
     std::cout << report.dump() << std::endl;
   } else {
     std::cout << n << " points on " << size << " ranks (" << exchange_name(options.exchange) << "): "
