@@ -47,8 +47,9 @@ NeighborList filter_blocks(const NeighborList& list, const std::vector<std::int3
     throw Error("blocks: " + std::to_string(row_blocks.size()) + " block ids for " + std::to_string(list.size()) +
                 " points");
   // Blocks renumbered densely, so the pairs become a small table.
+  const bool one_set = &row_blocks == &column_blocks;
   std::vector<std::int32_t> ids(row_blocks);
-  ids.insert(ids.end(), column_blocks.begin(), column_blocks.end());
+  if (!one_set) ids.insert(ids.end(), column_blocks.begin(), column_blocks.end());
   std::sort(ids.begin(), ids.end());
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
   const std::size_t count = ids.size();
@@ -64,9 +65,14 @@ NeighborList filter_blocks(const NeighborList& list, const std::vector<std::int3
   for (std::size_t a = 0; a < count; ++a)
     allows_all[a] = std::all_of(allowed.begin() + static_cast<std::ptrdiff_t>(a * count),
                                 allowed.begin() + static_cast<std::ptrdiff_t>((a + 1) * count), [](char c) { return c != 0; });
-  std::vector<std::uint32_t> row_block(row_blocks.size()), column_block(column_blocks.size());
+  std::vector<std::uint32_t> row_block(row_blocks.size()), column_block;
   std::transform(row_blocks.begin(), row_blocks.end(), row_block.begin(), dense);
-  std::transform(column_blocks.begin(), column_blocks.end(), column_block.begin(), dense);
+  if (one_set) {
+    column_block = row_block;
+  } else {
+    column_block.resize(column_blocks.size());
+    std::transform(column_blocks.begin(), column_blocks.end(), column_block.begin(), dense);
+  }
   return detail::select_entries(
       list, [&](std::size_t i) { return allows_all[row_block[i]] != 0; },
       [&](std::size_t i, point_id j) { return allowed[row_block[i] * count + column_block[static_cast<std::size_t>(j)]] != 0; },

@@ -69,25 +69,6 @@ NeighborList read_csv(const std::string& path, std::size_t points, bool half) {
   return NeighborList(std::move(offsets), std::move(indices), half);
 }
 
-template <typename T>
-Buffer<T> values_of(const detail::NpyArray& array) {
-  Buffer<T> out(array.elements());
-  if (array.type == "i8") {
-    for (std::size_t e = 0; e < out.size(); ++e) {
-      std::int64_t v;
-      std::memcpy(&v, &array.bytes[e * 8], 8);
-      out[e] = static_cast<T>(v);
-    }
-  } else if (array.type == "i4") {
-    for (std::size_t e = 0; e < out.size(); ++e) {
-      std::int32_t v;
-      std::memcpy(&v, &array.bytes[e * 4], 4);
-      out[e] = static_cast<T>(v);
-    }
-  }
-  return out;
-}
-
 NeighborList read_npy_list(const std::string& prefix, std::size_t points, bool half) {
   const std::string offsets_path = prefix + ".offsets.npy", indices_path = prefix + ".indices.npy";
   const auto offsets_array = detail::read_npy(offsets_path);
@@ -96,11 +77,11 @@ NeighborList read_npy_list(const std::string& prefix, std::size_t points, bool h
     throw Error(offsets_path + ": expected a 1-D integer array");
   if (indices_array.shape.size() != 1 || indices_array.type[0] != 'i')
     throw Error(indices_path + ": expected a 1-D integer array");
-  auto offsets = values_of<std::int64_t>(offsets_array);
+  auto offsets = detail::integer_values(offsets_array);
   if (offsets.size() != points + 1)
     throw Error(offsets_path + ": has " + std::to_string(offsets.size()) + " entries, expected " +
                 std::to_string(points + 1) + " (points + 1)");
-  const auto raw = values_of<std::int64_t>(indices_array);
+  const auto raw = detail::integer_values(indices_array);
   if (offsets.front() != 0 || offsets.back() != static_cast<std::int64_t>(raw.size()))
     throw Error(offsets_path + ": offsets do not span " + indices_path);
   for (std::size_t i = 0; i < points; ++i)

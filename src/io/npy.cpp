@@ -30,6 +30,20 @@ std::size_t NpyArray::elements() const {
   return n;
 }
 
+Buffer<std::int64_t> integer_values(const NpyArray& array) {
+  Buffer<std::int64_t> out(array.elements());
+  for (std::size_t e = 0; e < out.size(); ++e) {
+    if (array.type == "i8") {
+      std::memcpy(&out[e], &array.bytes[e * 8], 8);
+    } else {
+      std::int32_t v;
+      std::memcpy(&v, &array.bytes[e * 4], 4);
+      out[e] = v;
+    }
+  }
+  return out;
+}
+
 NpyArray read_npy(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");

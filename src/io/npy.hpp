@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "horizon/buffer.hpp"
+
 namespace horizon::detail {
 
 struct NpyArray {
@@ -12,6 +14,9 @@ struct NpyArray {
   std::vector<char> bytes;          ///< C order
   std::size_t elements() const;
 };
+
+/// The values of an "i4" or "i8" array as int64.
+Buffer<std::int64_t> integer_values(const NpyArray& array);
 
 /// Throws horizon::Error naming `path` for a missing file, a bad header, a big-endian or
 /// unsupported dtype, or too few bytes.

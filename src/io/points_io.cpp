@@ -58,7 +58,8 @@ bool parse_number(std::string_view field, double& value) {
   return error == std::errc() && end == field.data() + field.size();
 }
 
-constexpr double max_block_id = 2147483647.0;
+/// A block id: an integer from 0 to 2^31 - 1.
+bool is_block_id(double v) { return v >= 0 && v <= 2147483647.0 && v == std::floor(v); }
 
 /// visit(fields, line number) for every line of the text file `path` that has fields once its
 /// `#` comment is dropped.
@@ -109,7 +110,7 @@ PointSet points_from_text(const std::string& path) {
       set.xyz.push_back(values[a]);
     }
     if (columns == 5) {  // Peridigm's block id
-      if (!(values[3] >= 0 && values[3] <= max_block_id && values[3] == std::floor(values[3])))
+      if (!is_block_id(values[3]))
         throw Error(where + "block id '" + std::string(fields[3]) + "' is not an integer from 0 to 2^31 - 1");
       set.blocks.push_back(static_cast<std::int32_t>(values[3]));
     }
@@ -121,35 +122,28 @@ PointSet points_from_text(const std::string& path) {
 }  // namespace
 
 std::vector<std::int32_t> read_blocks(const std::string& path, std::size_t points) {
-  std::vector<double> values;
+  std::vector<std::int32_t> blocks;
   if (ends_with(path, ".npy")) {
     const detail::NpyArray array = detail::read_npy(path);
     if (array.shape.size() != 1 || array.type[0] != 'i')
       throw Error(path + ": expected a 1-D array of integer block ids");
-    for (std::size_t e = 0; e < array.elements(); ++e) {
-      std::int64_t v = 0;
-      if (array.type == "i8") {
-        std::memcpy(&v, &array.bytes[e * 8], 8);
-      } else {
-        std::int32_t v32;
-        std::memcpy(&v32, &array.bytes[e * 4], 4);
-        v = v32;
-      }
-      if (v < 0 || v > static_cast<std::int64_t>(max_block_id))
-        throw Error(path + ": block id " + std::to_string(v) + " of point " + std::to_string(e) + " is not from 0 to 2^31 - 1");
-      values.push_back(static_cast<double>(v));
+    for (const std::int64_t v : detail::integer_values(array)) {
+      if (!is_block_id(static_cast<double>(v)))
+        throw Error(path + ": block id " + std::to_string(v) + " of point " + std::to_string(blocks.size()) +
+                    " is not from 0 to 2^31 - 1");
+      blocks.push_back(static_cast<std::int32_t>(v));
     }
   } else {
     for_each_line(path, [&](const std::vector<std::string_view>& fields, std::size_t number) {
       double v = -1;
-      if (fields.size() != 1 || !parse_number(fields[0], v) || !(v >= 0 && v <= max_block_id && v == std::floor(v)))
+      if (fields.size() != 1 || !parse_number(fields[0], v) || !is_block_id(v))
         throw Error(path + ":" + std::to_string(number) + ": expected one block id (an integer from 0 to 2^31 - 1)");
-      values.push_back(v);
+      blocks.push_back(static_cast<std::int32_t>(v));
     });
   }
-  if (values.size() != points)
-    throw Error(path + ": " + std::to_string(values.size()) + " block ids for " + std::to_string(points) + " points");
-  return std::vector<std::int32_t>(values.begin(), values.end());
+  if (blocks.size() != points)
+    throw Error(path + ": " + std::to_string(blocks.size()) + " block ids for " + std::to_string(points) + " points");
+  return blocks;
 }
 
 PointSet read_points(const std::string& path) {
