@@ -58,6 +58,24 @@ TEST(Cuda, RowsOfEveryLengthAreSorted) {
   }
 }
 
+TEST(Cuda, FewLongRowsAmongShortOnesAreSorted) {
+  REQUIRE_GPU();
+  // Rows of ~10 ids, and under 1/8 of them from dense blobs (~100, ~300, ~1500 ids): the
+  // short-row fill stores those straight and sorts them afterwards, in one batch or several.
+  PointSet points = random_cloud(20000, 3, 7);
+  for (std::size_t blob : {100u, 300u, 1500u}) {
+    const PointSet b = clustered_cloud(blob, 1, 0.05, 3, blob);
+    points.xyz.insert(points.xyz.end(), b.xyz.begin(), b.xyz.end());
+  }
+  for (bool half : {false, true})
+    for (std::int64_t batch : {std::int64_t{0}, std::int64_t{20000}}) {
+      SearchOptions cuda = options_for(0.5, Backend::cuda), serial = options_for(0.5, Backend::serial);
+      cuda.half = serial.half = half;
+      cuda.gpu_batch_entries = batch;
+      EXPECT_EQ(search(points.view(), cuda), search(points.view(), serial)) << half << " " << batch;
+    }
+}
+
 TEST(Cuda, UnsortedRowsHoldTheSameFamilies) {
   REQUIRE_GPU();
   for (double horizon : {0.3, 0.6}) {  // short rows and rows of ~100

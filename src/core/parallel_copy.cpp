@@ -1,21 +1,57 @@
 #include "parallel_copy.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 
 namespace horizon::detail {
 
 namespace {
-constexpr std::size_t piece = std::size_t{1} << 20;
+
+constexpr std::size_t huge_page = std::size_t{2} << 20;
+
+void stream_copy(char* to, const char* from, std::size_t bytes) {
+#if defined(__SSE2__)
+  const std::size_t head = std::min(bytes, (16 - reinterpret_cast<std::uintptr_t>(to) % 16) % 16);
+  std::memcpy(to, from, head);
+  std::size_t at = head;
+  for (; at + 64 <= bytes; at += 64) {
+    const auto* s = reinterpret_cast<const __m128i*>(from + at);
+    auto* d = reinterpret_cast<__m128i*>(to + at);
+    const __m128i a = _mm_loadu_si128(s), b = _mm_loadu_si128(s + 1), c = _mm_loadu_si128(s + 2),
+                  e = _mm_loadu_si128(s + 3);
+    _mm_stream_si128(d, a);
+    _mm_stream_si128(d + 1, b);
+    _mm_stream_si128(d + 2, c);
+    _mm_stream_si128(d + 3, e);
+  }
+  std::memcpy(to + at, from + at, bytes - at);
+  _mm_sfence();  // the streamed stores are visible before this thread leaves the loop
+#else
+  std::memcpy(to, from, bytes);
+#endif
 }
 
+}  // namespace
+
 void parallel_copy(void* to, const void* from, std::size_t bytes) {
-  const auto pieces = static_cast<std::int64_t>((bytes + piece - 1) / piece);
-#pragma omp parallel for schedule(static) if (pieces > 4)
+  auto* dest = static_cast<char*>(to);
+  const auto* src = static_cast<const char*>(from);
+  // Piece i ends at the (i + 1)-th 2 MB boundary of the destination past its start.
+  const std::size_t lead = huge_page - reinterpret_cast<std::uintptr_t>(dest) % huge_page;
+  const auto pieces = static_cast<std::int64_t>(bytes <= lead ? 1 : 1 + (bytes - lead + huge_page - 1) / huge_page);
+#pragma omp parallel for schedule(static) if (pieces > 2)
   for (std::int64_t i = 0; i < pieces; ++i) {
-    const std::size_t at = static_cast<std::size_t>(i) * piece;
-    std::memcpy(static_cast<char*>(to) + at, static_cast<const char*>(from) + at,
-                bytes - at < piece ? bytes - at : piece);
+    const std::size_t begin = i == 0 ? 0 : lead + static_cast<std::size_t>(i - 1) * huge_page;
+    const std::size_t end = std::min(bytes, lead + static_cast<std::size_t>(i) * huge_page);
+    stream_copy(dest + begin, src + begin, end - begin);
   }
 }
 
@@ -39,6 +75,17 @@ void parallel_touch(void* at, std::size_t bytes) {
   char* base = static_cast<char*>(at);
 #pragma omp parallel for schedule(static) if (pages > 256)
   for (std::int64_t i = 0; i < pages; ++i) base[static_cast<std::size_t>(i) * page] = 0;
+}
+
+void advise_huge_pages(void* at, std::size_t bytes) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  const auto begin = (reinterpret_cast<std::uintptr_t>(at) + huge_page - 1) / huge_page * huge_page;
+  const auto end = (reinterpret_cast<std::uintptr_t>(at) + bytes) / huge_page * huge_page;
+  if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);  // a hint: errors ignored
+#else
+  (void)at;
+  (void)bytes;
+#endif
 }
 
 }  // namespace horizon::detail

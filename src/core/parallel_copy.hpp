@@ -1,12 +1,16 @@
 #pragma once
-// Copies on all cores: one core cannot keep up with PCIe when the destination's pages are
-// touched for the first time.
+// Copies into fresh host memory on all cores: one core cannot keep up with PCIe when the
+// destination's pages are touched for the first time.
 #include <cstddef>
 
 #include "horizon/points.hpp"
 
 namespace horizon::detail {
 
+/// Copies with non-temporal stores where the CPU has them (the destination is not read back
+/// first): on the H200 host a staged device -> host copy ran at 1.3x the PCIe floor this way
+/// and at 1.9x with memcpy's ordinary stores. Each core takes whole 2 MB pieces of the
+/// destination, so no two cores fault in one huge page.
 void parallel_copy(void* to, const void* from, std::size_t bytes);
 
 /// Coordinates [first, first + count) of `points` (flattened, point after point) as doubles.
@@ -14,5 +18,10 @@ void parallel_copy_coordinates(double* to, PointView points, std::size_t first, 
 
 /// Touches every page of [at, at + bytes) once, so that later copies into it do not fault.
 void parallel_touch(void* at, std::size_t bytes);
+
+/// Asks for transparent huge pages over the 2 MB-aligned interior of [at, at + bytes) (where
+/// the kernel offers them on request): faulting in 16 GB took 0.30 s instead of 0.75 s on the
+/// H200 host's 16 cores.
+void advise_huge_pages(void* at, std::size_t bytes);
 
 }  // namespace horizon::detail

@@ -173,6 +173,9 @@ struct PassArgs {
   int sort_bits;  // ids are below 2^sort_bits - 1
   std::int64_t* counts;
   unsigned long long* widest;
+  unsigned long long* long_rows;  // count pass: rows longer than the short-row fill stages
+  point_id* spilled;              // short-row fill: ids of the rows it stored unstaged...
+  unsigned* spill_count;          // ...and their number
   const std::int64_t* offsets;
   point_id* out;
   point_id first, last;

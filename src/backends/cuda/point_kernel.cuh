@@ -46,11 +46,12 @@ __device__ std::int64_t walk_stencil(const DeviceIndexView& ix, std::int64_t p, 
   return stencil;
 }
 
-/// Count pass: counts[id] = |family| of every point, and the widest stencil of the queries.
+/// Count pass: counts[id] = |family| of every point, the widest stencil of the queries and the
+/// number of rows longer than staged_row.
 template <Metric M, int D, bool Half>
 __global__ void __launch_bounds__(block_size) count_families(DeviceIndexView ix, PassArgs a) {
-  __shared__ unsigned long long widest;
-  if (threadIdx.x == 0) widest = 0;
+  __shared__ unsigned long long widest, long_rows;
+  if (threadIdx.x == 0) widest = long_rows = 0;
   __syncthreads();
   const std::int64_t p = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
   if (p < ix.n) {
@@ -59,11 +60,15 @@ __global__ void __launch_bounds__(block_size) count_families(DeviceIndexView ix,
     if (self < ix.queries) {
       const std::int64_t stencil = walk_stencil<M, D, Half>(ix, p, self, a.threshold, [&](point_id) { ++found; });
       atomicMax(&widest, static_cast<unsigned long long>(stencil));
+      if (found > staged_row) atomicAdd(&long_rows, 1ull);
     }
     a.counts[self] = found;
   }
   __syncthreads();
-  if (threadIdx.x == 0) atomicMax(a.widest, widest);
+  if (threadIdx.x == 0) {
+    atomicMax(a.widest, widest);
+    if (long_rows) atomicAdd(a.long_rows, long_rows);
+  }
 }
 
 /// Fill pass for any row length: each thread stores its row straight into the list.
@@ -78,9 +83,11 @@ __global__ void fill_families(DeviceIndexView ix, PassArgs a) {
   walk_stencil<M, D, Half>(ix, p, self, a.threshold, [&](point_id other) { row[found++] = other; });
 }
 
-/// Fill pass for rows of up to staged_row: rows staged in shared memory (column `lane` of the
-/// warp's tile, padded so that both the per-thread and the per-row accesses avoid bank
-/// conflicts), sorted there by insertion when Sorted, stored by the warp row after row.
+/// Fill pass for rows of up to Rows: rows staged in shared memory (column `lane` of the warp's
+/// tile, padded so that both the per-thread and the per-row accesses avoid bank conflicts),
+/// sorted there by insertion when Sorted, stored by the warp row after row. A longer row (a
+/// dense spot of a clustered cloud) is stored straight into the list and its id appended to
+/// a.spilled, to be sorted afterwards (sort_listed_rows).
 template <Metric M, int D, bool Half, bool Sorted, int Rows>
 __global__ void __launch_bounds__(staged_block(Rows)) fill_short_rows(DeviceIndexView ix, PassArgs a) {
   constexpr int pitch = 33;  // rows[j * pitch + lane]: 32 lanes, +1 against bank conflicts
@@ -93,14 +100,21 @@ __global__ void __launch_bounds__(staged_block(Rows)) fill_short_rows(DeviceInde
   if (p < ix.n) {
     self = ix.order[p];
     if (self < ix.queries && self >= a.first && self < a.last) {
-      walk_stencil<M, D, Half>(ix, p, self, a.threshold, [&](point_id other) { rows[found++ * pitch + lane] = other; });
-      if (Sorted)
-        for (int i = 1; i < found; ++i) {
-          const point_id value = rows[i * pitch + lane];
-          int j = i;
-          for (; j > 0 && rows[(j - 1) * pitch + lane] > value; --j) rows[j * pitch + lane] = rows[(j - 1) * pitch + lane];
-          rows[j * pitch + lane] = value;
-        }
+      if (a.offsets[self + 1] - a.offsets[self] <= Rows) {
+        walk_stencil<M, D, Half>(ix, p, self, a.threshold, [&](point_id other) { rows[found++ * pitch + lane] = other; });
+        if (Sorted)
+          for (int i = 1; i < found; ++i) {
+            const point_id value = rows[i * pitch + lane];
+            int j = i;
+            for (; j > 0 && rows[(j - 1) * pitch + lane] > value; --j) rows[j * pitch + lane] = rows[(j - 1) * pitch + lane];
+            rows[j * pitch + lane] = value;
+          }
+      } else {
+        point_id* row = a.out + (a.offsets[self] - a.base);
+        std::int64_t stored = 0;
+        walk_stencil<M, D, Half>(ix, p, self, a.threshold, [&](point_id other) { row[stored++] = other; });
+        if (Sorted) a.spilled[atomicAdd(a.spill_count, 1u)] = self;
+      }
     }
   }
   __syncwarp();

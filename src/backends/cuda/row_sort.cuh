@@ -23,13 +23,31 @@ struct IdLess {
   __device__ bool operator()(point_id a, point_id b) const { return a < b; }
 };
 
-__global__ void sort_tiny_rows(point_id* rows, const std::int64_t* offsets, std::int64_t base,
-                               std::int64_t row_count) {
-  const std::int64_t r = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
-  if (r >= row_count) return;
-  const std::int64_t length = offsets[r + 1] - offsets[r];
+/// The rows a sort pass takes: the r-th row of a batch, or, with `listed`, the row of the r-th
+/// id in that list (the long rows the short-row fill stored unsorted), of the batch's `first`.
+struct RowSet {
+  const std::int64_t* offsets;  // the batch's offsets: row r is [offsets[r], offsets[r + 1]) - base
+  std::int64_t base;
+  std::int64_t count;  // rows, or the list's capacity
+  const point_id* listed = nullptr;
+  const unsigned* listed_count = nullptr;
+  point_id first = 0;
+
+  /// Whether row r exists; its place in the batch's buffer and its length.
+  __device__ bool find(std::int64_t r, std::int64_t& begin, std::int64_t& length) const {
+    if (r >= count || (listed && r >= *listed_count)) return false;
+    const std::int64_t local = listed ? listed[r] - first : r;
+    begin = offsets[local] - base;
+    length = offsets[local + 1] - offsets[local];
+    return true;
+  }
+};
+
+__global__ void sort_tiny_rows(point_id* rows, RowSet set) {
+  std::int64_t begin, length;
+  if (!set.find(blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x, begin, length)) return;
   if (length > thread_row) return;
-  point_id* row = rows + (offsets[r] - base);
+  point_id* row = rows + begin;
   for (int i = 1; i < length; ++i) {
     const point_id value = row[i];
     int j = i;
@@ -39,14 +57,12 @@ __global__ void sort_tiny_rows(point_id* rows, const std::int64_t* offsets, std:
 }
 
 template <int Items>
-__global__ void sort_short_rows(point_id* rows, const std::int64_t* offsets, std::int64_t base,
-                                std::int64_t row_count) {
+__global__ void sort_short_rows(point_id* rows, RowSet set) {
   using WarpSort = cub::WarpMergeSort<point_id, Items, 32>;
   __shared__ typename WarpSort::TempStorage temp[block_size / 32];
   const int warp = threadIdx.x / 32, lane = threadIdx.x % 32;
-  const std::int64_t r = blockIdx.x * static_cast<std::int64_t>(block_size / 32) + warp;
-  if (r >= row_count) return;
-  const std::int64_t begin = offsets[r] - base, length = offsets[r + 1] - offsets[r];
+  std::int64_t begin, length;
+  if (!set.find(blockIdx.x * static_cast<std::int64_t>(block_size / 32) + warp, begin, length)) return;
   if (length <= thread_row || length > 32 * Items) return;  // uniform across the warp
   point_id keys[Items];
   for (int i = 0; i < Items; ++i) {
@@ -60,12 +76,12 @@ __global__ void sort_short_rows(point_id* rows, const std::int64_t* offsets, std
   }
 }
 
-__global__ void sort_long_rows(point_id* rows, const std::int64_t* offsets, std::int64_t base) {
+__global__ void sort_long_rows(point_id* rows, RowSet set) {
   using BlockSort = cub::BlockMergeSort<point_id, block_size, block_items>;
   __shared__ typename BlockSort::TempStorage temp;
-  const std::int64_t r = blockIdx.x;
-  const std::int64_t begin = offsets[r] - base, length = offsets[r + 1] - offsets[r];
-  if (length <= warp_row || length > block_row) return;  // uniform across the block
+  std::int64_t begin, length;
+  if (!set.find(blockIdx.x, begin, length)) return;  // uniform across the block
+  if (length <= warp_row || length > block_row) return;
   point_id keys[block_items];
   for (int i = 0; i < block_items; ++i) {
     const int at = threadIdx.x * block_items + i;
@@ -78,23 +94,27 @@ __global__ void sort_long_rows(point_id* rows, const std::int64_t* offsets, std:
   }
 }
 
-/// Sorts rows of up to block_row ids, each by the smallest unit that holds it.
-void sort_rows_on_chip(point_id* rows, const std::int64_t* offsets, std::int64_t base,
-                       std::int64_t row_count, std::int64_t longest, cudaStream_t stream) {
-  const unsigned warp_blocks = blocks_for(static_cast<std::size_t>(row_count) * 32);
-  sort_tiny_rows<<<blocks_for(static_cast<std::size_t>(row_count)), block_size, 0, stream>>>(rows, offsets, base, row_count);
-  check_launch("sort_tiny_rows");
-  if (longest > thread_row) {
+/// Sorts the set's rows of up to block_row ids, each by the smallest unit that holds it;
+/// `shortest` and `longest` bound their lengths.
+void sort_rows_on_chip(point_id* rows, const RowSet& set, std::int64_t shortest, std::int64_t longest,
+                       cudaStream_t stream) {
+  if (set.count == 0) return;
+  const unsigned warp_blocks = blocks_for(static_cast<std::size_t>(set.count) * 32);
+  if (shortest <= thread_row) {
+    sort_tiny_rows<<<blocks_for(static_cast<std::size_t>(set.count)), block_size, 0, stream>>>(rows, set);
+    check_launch("sort_tiny_rows");
+  }
+  if (longest > thread_row && shortest <= warp_row) {
     if (longest <= 64)
-      sort_short_rows<2><<<warp_blocks, block_size, 0, stream>>>(rows, offsets, base, row_count);
+      sort_short_rows<2><<<warp_blocks, block_size, 0, stream>>>(rows, set);
     else if (longest <= 128)
-      sort_short_rows<4><<<warp_blocks, block_size, 0, stream>>>(rows, offsets, base, row_count);
+      sort_short_rows<4><<<warp_blocks, block_size, 0, stream>>>(rows, set);
     else
-      sort_short_rows<8><<<warp_blocks, block_size, 0, stream>>>(rows, offsets, base, row_count);
+      sort_short_rows<8><<<warp_blocks, block_size, 0, stream>>>(rows, set);
     check_launch("sort_short_rows");
   }
   if (longest > warp_row) {
-    sort_long_rows<<<static_cast<unsigned>(row_count), block_size, 0, stream>>>(rows, offsets, base);
+    sort_long_rows<<<static_cast<unsigned>(set.count), block_size, 0, stream>>>(rows, set);
     check_launch("sort_long_rows");
   }
 }

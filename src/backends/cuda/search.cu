@@ -77,17 +77,19 @@ struct Counts {
   DeviceArray<std::int64_t> offsets;
   std::int64_t total = 0, longest = 0, widest = 0;  // entries, longest row, largest stencil
   std::int64_t cells = 0;                            // occupied cells
+  std::int64_t long_rows = 0;                        // rows longer than staged_row
 };
 
 /// Counts each family, then an inclusive scan into offsets[1..n]; one synchronisation, to
 /// read the totals the allocation of the list needs.
 Counts count_offsets(const DeviceIndex& index, const SearchOptions& options, std::size_t count,
                      cudaStream_t stream, MemoryMeter& meter) {
-  DeviceArray<std::int64_t> counts(count, meter), offsets(count + 1, meter), summary(4, meter);
+  DeviceArray<std::int64_t> counts(count, meter), offsets(count + 1, meter), summary(5, meter);
   HORIZON_CUDA_CHECK(cudaMemsetAsync(summary.get(), 0, summary.bytes(), stream));
   PassArgs args = pass_args(options, index.size());
   args.counts = counts.get();
   args.widest = reinterpret_cast<unsigned long long*>(summary.get() + 2);
+  args.long_rows = reinterpret_cast<unsigned long long*>(summary.get() + 4);
   const DeviceIndexView ix = index.view(options.queries);
   with_shape(options.metric, ix.grid.dims, options.half, [&](auto m, auto d, auto h) {
     count_families<HORIZON_SHAPE(m, d, h)><<<blocks_for(count), block_size, 0, stream>>>(ix, args);
@@ -108,10 +110,10 @@ Counts count_offsets(const DeviceIndex& index, const SearchOptions& options, std
                                      cudaMemcpyDeviceToDevice, stream));
   HORIZON_CUDA_CHECK(cudaMemcpyAsync(summary.get() + 3, ix.cell_count, sizeof(std::int64_t),
                                      cudaMemcpyDeviceToDevice, stream));
-  std::int64_t host[4];
+  std::int64_t host[5];
   HORIZON_CUDA_CHECK(cudaMemcpyAsync(host, summary.get(), sizeof(host), cudaMemcpyDeviceToHost, stream));
   HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
-  return Counts{std::move(offsets), host[0], host[1], host[2], host[3]};
+  return Counts{std::move(offsets), host[0], host[1], host[2], host[3], host[4]};
 }
 
 struct MinusBase {
@@ -131,7 +133,8 @@ std::size_t sort_scratch_bytes(std::int64_t entries, std::int64_t rows, const st
 /// The fill kernel, by the longest row, the widest stencil and the points per occupied cell
 /// the count pass found.
 enum class Fill {
-  short_rows,  // rows of up to staged_row, staged and sorted per thread (point_kernel.cuh)
+  short_rows,  // rows of up to staged_row staged and sorted per thread, a few longer ones
+               // stored straight and sorted afterwards (point_kernel.cuh)
   per_cell,    // stencils of up to the stage's capacity, sorted once per cell (cell_kernel.cuh)
   per_point    // anything else: straight stores, rows sorted afterwards (row_sort.cuh)
 };
@@ -139,12 +142,17 @@ enum class Fill {
 // A cell's staging and sort pay off only when shared by enough points: with ~3 points per
 // cell (random cloud, 8 M points, m = 1.5, H100) the per-cell fill took 3x the per-point one.
 constexpr std::int64_t cell_fill_min_points = 8;
+// The short-row fill takes rows longer than it stages when they are this rare: the clustered
+// cloud's (8 M points, m = 1.5) few rows past 64 sent all 8 M rows to the per-point fill and
+// sort, at 0.48x the naive kernel on an H100.
+constexpr std::int64_t spill_max_fraction = 8;
 
 Fill fill_kind(const Counts& counts) {
   if (counts.longest <= staged_row) return Fill::short_rows;
   const auto points = static_cast<std::int64_t>(counts.offsets.size()) - 1;
   if (counts.widest <= Stage<wide_stage>::capacity && points >= cell_fill_min_points * counts.cells)
     return Fill::per_cell;
+  if (counts.longest <= block_row && counts.long_rows * spill_max_fraction <= points) return Fill::short_rows;
   return Fill::per_point;
 }
 
@@ -170,6 +178,14 @@ point_id* fill_rows(const DeviceIndex& index, const SearchOptions& options, cons
   const bool sorted = options.sort_rows;
   const unsigned blocks = blocks_for(static_cast<std::size_t>(ix.n));
   const Fill kind = fill_kind(counts);
+  // The long rows the short-row fill stores unsorted: their ids, then their number.
+  const bool spills = sorted && kind == Fill::short_rows && counts.long_rows > 0;
+  DeviceArray<point_id> spilled(spills ? static_cast<std::size_t>(counts.long_rows) + 1 : 0, meter);
+  if (spills) {
+    args.spilled = spilled.get() + 1;
+    args.spill_count = reinterpret_cast<unsigned*>(spilled.get());
+    HORIZON_CUDA_CHECK(cudaMemsetAsync(spilled.get(), 0, sizeof(point_id), stream));
+  }
   with_shape(options.metric, ix.grid.dims, options.half, [&](auto m, auto d, auto h) {
     switch (kind) {
       case Fill::short_rows:
@@ -185,11 +201,15 @@ point_id* fill_rows(const DeviceIndex& index, const SearchOptions& options, cons
         return check_launch("fill_families");
     }
   });
-  if (!sorted || kind != Fill::per_point) return rows_out;
   const std::int64_t rows = last - first;
   const std::int64_t* offsets = counts.offsets.get();
+  if (spills) {
+    const RowSet set{offsets + first, base, counts.long_rows, args.spilled, args.spill_count, first};
+    sort_rows_on_chip(rows_out, set, staged_row + 1, counts.longest, stream);
+  }
+  if (!sorted || kind != Fill::per_point) return rows_out;
   if (counts.longest <= block_row) {
-    sort_rows_on_chip(rows_out, offsets + first, base, rows, counts.longest, stream);
+    sort_rows_on_chip(rows_out, RowSet{offsets + first, base, rows}, 0, counts.longest, stream);
     return rows_out;
   }
   const auto begins = thrust::make_transform_iterator(offsets + first, MinusBase{base});
@@ -295,9 +315,11 @@ NeighborList search_cuda(PointView points, const SearchOptions& options, SearchS
   double copy_seconds = 0;
   auto copy_start = std::chrono::steady_clock::now();
   Buffer<std::int64_t> host_offsets(n + 1);
+  advise_huge_pages(host_offsets.data(), counts.offsets.bytes());
   copy_to_host(host_offsets.data(), counts.offsets.get(), counts.offsets.bytes(), stream);
   check_list_fits(counts.total, options);
   Buffer<point_id> indices(static_cast<std::size_t>(counts.total));
+  advise_huge_pages(indices.data(), indices.size() * sizeof(point_id));
   copy_seconds += seconds_since(copy_start);
 
   // Batches of rows sized to what is free: the list (twice when rows need the segmented sort).
@@ -317,9 +339,7 @@ NeighborList search_cuda(PointView points, const SearchOptions& options, SearchS
     DeviceArray<point_id> spare(needs_spare(options, counts) ? static_cast<std::size_t>(entries) : 0, meter);
     const point_id* result = fill_rows(index, options, counts, base, entries, static_cast<point_id>(first),
                                        static_cast<point_id>(last), rows.get(), spare.get(), stream, meter);
-    // While the GPU fills, the cores fault in the destination's pages.
     copy_start = std::chrono::steady_clock::now();
-    parallel_touch(indices.data() + base, static_cast<std::size_t>(entries) * sizeof(point_id));
     copy_to_host(indices.data() + base, result, static_cast<std::size_t>(entries) * sizeof(point_id), stream);
     copy_seconds += seconds_since(copy_start);
     first = last;
@@ -338,6 +358,7 @@ void DeviceNeighborList::Free::operator()(void* pointer) const { cudaFreeAsync(p
 NeighborList DeviceNeighborList::to_host(bool half) const {
   Buffer<std::int64_t> offsets(points_ + 1, 0);
   Buffer<point_id> indices(static_cast<std::size_t>(total_));
+  detail::advise_huge_pages(indices.data(), indices.size() * sizeof(point_id));
   if (offsets_) detail::copy_to_host(offsets.data(), offsets_.get(), offsets.size() * sizeof(std::int64_t), stream_);
   if (total_) detail::copy_to_host(indices.data(), indices_.get(), indices.size() * sizeof(point_id), stream_);
   return NeighborList(std::move(offsets), std::move(indices), half);
