@@ -3,15 +3,22 @@
 /// The storage of neighbour lists: a std::vector whose elements are not zeroed on resize. A list
 /// is always written in full before it is read, and zeroing 470 MB of indices first took 0.19 s
 /// of a 1.1 s search on one core; without it the pages are faulted in by the (parallel) fill.
+/// The last two large blocks freed (64 MB or more each, up to a quarter of the machine's memory)
+/// are kept for the next lists of about their size, so a search repeated every time step does
+/// not fault its pages in again; release_cached_buffers() gives them back.
 #include <cstdlib>
 #include <new>
 #include <vector>
 
 namespace horizon {
 
+/// Frees the blocks kept for the next large lists, if any.
+void release_cached_buffers();
+
 namespace detail {
 void* allocate_large(std::size_t bytes);
-void release_large(void* pointer) noexcept;
+void release_large(void* pointer, std::size_t bytes) noexcept;
+std::size_t cached_buffer_bytes();  // held by the cache now
 }  // namespace detail
 
 template <typename T>
@@ -22,7 +29,7 @@ struct UninitializedAllocator {
   UninitializedAllocator(const UninitializedAllocator<U>&) {}
 
   T* allocate(std::size_t n) { return static_cast<T*>(detail::allocate_large(n * sizeof(T))); }
-  void deallocate(T* p, std::size_t) noexcept { detail::release_large(p); }
+  void deallocate(T* p, std::size_t n) noexcept { detail::release_large(p, n * sizeof(T)); }
   /// Default construction leaves trivial elements uninitialised.
   template <typename U>
   void construct(U* p) noexcept {

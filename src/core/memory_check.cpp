@@ -4,6 +4,7 @@
 #include <fstream>
 #include <string>
 
+#include "horizon/buffer.hpp"
 #include "horizon/error.hpp"
 
 namespace horizon::detail {
@@ -33,7 +34,12 @@ std::string size_text(std::size_t bytes) {
 
 void check_list_fits(std::int64_t entries, const SearchOptions& options) {
   const std::size_t needed = static_cast<std::size_t>(entries) * sizeof(point_id);
-  const std::size_t limit = options.max_memory ? options.max_memory : memory_available();
+  // The block kept for the next list is free memory to this search (allocate_large reuses or
+  // frees it).
+  const std::size_t available = memory_available();
+  const std::size_t limit = options.max_memory ? options.max_memory
+                            : available      ? available + cached_buffer_bytes()
+                                             : 0;
   if (limit == 0 || needed <= limit) return;
   std::string what = "the neighbour list needs " + size_text(needed) + " (" + std::to_string(entries) +
                      " entries) but " + size_text(limit) +

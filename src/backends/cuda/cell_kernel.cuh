@@ -6,8 +6,8 @@
 // candidates 32 at a time and stores each sweep's hits as one coalesced piece of the row.
 // Every point of the cell tests the candidates in id order, so rows come out sorted without
 // a sort per row, and the cell's points share one staging and one sort. A stencil larger
-// than the stage is swept from global memory instead, leaving its rows unsorted (the caller
-// knows the widest stencil from the count pass, and sorts rows after the fill then).
+// than the stage (a dense spot of a clustered cloud) is swept from global memory instead,
+// leaving its rows unsorted: their ids go to a.spilled, to be sorted after the fill.
 // Measured against the per-point fill + row sort (Nsight Compute, H100, lattice n = 200,
 // m = 3.015): 14.6 ms against 25.9 ms (warp per point, fused warp sort). For rows of up to
 // 64, or cells of fewer than 8 points, the per-point kernels win (point_kernel.cuh).
@@ -148,6 +148,7 @@ __global__ void __launch_bounds__(cell_block) cell_families(DeviceIndexView ix, 
                                           id = s.id[i];
                                         });
       } else {
+        if (Sorted && threadIdx.x % 32 == 0) a.spilled[atomicAdd(a.spill_count, 1u)] = self;
         int found = 0;
         for (int r = 0; r < s.runs; ++r) {
           const std::int64_t begin = s.run_begin[r];
@@ -155,7 +156,7 @@ __global__ void __launch_bounds__(cell_block) cell_families(DeviceIndexView ix, 
                                           row, found, [&](int i, double& x, double& y, double& z, point_id& id) {
                                             x = ix.x[begin + i];
                                             y = ix.y[begin + i];
-                                            z = ix.z[begin + i];
+                                            z = D == 3 ? ix.z[begin + i] : 0.0;
                                             id = ix.order[begin + i];
                                           });
         }

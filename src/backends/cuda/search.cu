@@ -135,7 +135,8 @@ std::size_t sort_scratch_bytes(std::int64_t entries, std::int64_t rows, const st
 enum class Fill {
   short_rows,  // rows of up to staged_row staged and sorted per thread, a few longer ones
                // stored straight and sorted afterwards (point_kernel.cuh)
-  per_cell,    // stencils of up to the stage's capacity, sorted once per cell (cell_kernel.cuh)
+  per_cell,    // stencils of up to the stage's capacity sorted once per cell, rows of wider
+               // ones stored straight and sorted afterwards (cell_kernel.cuh)
   per_point    // anything else: straight stores, rows sorted afterwards (row_sort.cuh)
 };
 
@@ -150,7 +151,8 @@ constexpr std::int64_t spill_max_fraction = 8;
 Fill fill_kind(const Counts& counts) {
   if (counts.longest <= staged_row) return Fill::short_rows;
   const auto points = static_cast<std::int64_t>(counts.offsets.size()) - 1;
-  if (counts.widest <= Stage<wide_stage>::capacity && points >= cell_fill_min_points * counts.cells)
+  if ((counts.widest <= Stage<wide_stage>::capacity || counts.longest <= block_row) &&
+      points >= cell_fill_min_points * counts.cells)
     return Fill::per_cell;
   if (counts.longest <= block_row && counts.long_rows * spill_max_fraction <= points) return Fill::short_rows;
   return Fill::per_point;
@@ -178,9 +180,12 @@ point_id* fill_rows(const DeviceIndex& index, const SearchOptions& options, cons
   const bool sorted = options.sort_rows;
   const unsigned blocks = blocks_for(static_cast<std::size_t>(ix.n));
   const Fill kind = fill_kind(counts);
-  // The long rows the short-row fill stores unsorted: their ids, then their number.
-  const bool spills = sorted && kind == Fill::short_rows && counts.long_rows > 0;
-  DeviceArray<point_id> spilled(spills ? static_cast<std::size_t>(counts.long_rows) + 1 : 0, meter);
+  // The rows a fill stores unsorted: their number, then their ids (the short-row fill's long
+  // rows; the per-cell fill's rows of cells whose stencil outgrows the stage).
+  const bool spills = sorted && ((kind == Fill::short_rows && counts.long_rows > 0) ||
+                                 (kind == Fill::per_cell && counts.widest > Stage<wide_stage>::capacity));
+  const std::int64_t most_spilled = kind == Fill::short_rows ? counts.long_rows : last - first;
+  DeviceArray<point_id> spilled(spills ? static_cast<std::size_t>(most_spilled) + 1 : 0, meter);
   if (spills) {
     args.spilled = spilled.get() + 1;
     args.spill_count = reinterpret_cast<unsigned*>(spilled.get());
@@ -204,8 +209,8 @@ point_id* fill_rows(const DeviceIndex& index, const SearchOptions& options, cons
   const std::int64_t rows = last - first;
   const std::int64_t* offsets = counts.offsets.get();
   if (spills) {
-    const RowSet set{offsets + first, base, counts.long_rows, args.spilled, args.spill_count, first};
-    sort_rows_on_chip(rows_out, set, staged_row + 1, counts.longest, stream);
+    const RowSet set{offsets + first, base, most_spilled, args.spilled, args.spill_count, first};
+    sort_rows_on_chip(rows_out, set, kind == Fill::short_rows ? staged_row + 1 : 0, counts.longest, stream);
   }
   if (!sorted || kind != Fill::per_point) return rows_out;
   if (counts.longest <= block_row) {

@@ -1,0 +1,49 @@
+// The list storage's cache of large freed blocks.
+#include "horizon/buffer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+
+namespace horizon {
+namespace {
+
+constexpr std::size_t mib = std::size_t{1} << 20;
+
+TEST(Buffer, ReusesLargeFreedBlocksForListsOfAboutTheirSize) {
+  release_cached_buffers();
+  const std::int32_t* first = nullptr;
+  {
+    Buffer<std::int32_t> list(200 * mib / sizeof(std::int32_t));
+    list.back() = 7;
+    first = list.data();
+  }
+  const std::size_t block = detail::cached_buffer_bytes();
+  EXPECT_GE(block, 200 * mib + 200 * mib / 16);  // taken a little larger than asked
+  {
+    Buffer<std::int32_t> longer(210 * mib / sizeof(std::int32_t));  // the next step's longer list
+    EXPECT_EQ(longer.data(), first);
+    EXPECT_EQ(detail::cached_buffer_bytes(), 0u);
+  }
+  {
+    Buffer<std::int32_t> shorter(120 * mib / sizeof(std::int32_t));  // at least half the block
+    EXPECT_EQ(shorter.data(), first);
+  }
+  EXPECT_EQ(detail::cached_buffer_bytes(), block);
+  {
+    Buffer<std::int32_t> small(80 * mib / sizeof(std::int32_t));  // under half: the block is freed
+    EXPECT_EQ(detail::cached_buffer_bytes(), 0u);
+  }
+  {
+    Buffer<std::int64_t> offsets(10 * mib);  // a search's two arrays are both kept
+    Buffer<std::int32_t> indices(200 * mib / sizeof(std::int32_t));
+    Buffer<std::int32_t> tiny(mib);  // below 64 MB: never kept
+  }
+  EXPECT_GE(detail::cached_buffer_bytes(), 280 * mib);
+  EXPECT_LT(detail::cached_buffer_bytes(), 320 * mib);
+  release_cached_buffers();
+  EXPECT_EQ(detail::cached_buffer_bytes(), 0u);
+}
+
+}  // namespace
+}  // namespace horizon
