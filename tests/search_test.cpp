@@ -194,3 +194,34 @@ TEST(Memory, ListTooLargeIsRefusedBeforeAllocatingWithItsSizeAndTheWaysOut) {
 }
 }  // namespace
 }  // namespace horizon
+
+namespace horizon {
+namespace {
+
+TEST(Validate, NamesTheFirstNonFinitePointOnAnyBackendAndPrecision) {
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  for (double bad : {nan, inf, -inf})
+    for (std::size_t at : {std::size_t{0}, std::size_t{70000}, std::size_t{399999}}) {
+      PointSet points = random_cloud(400000, 3, 1);
+      points.xyz[at * 3 + 2] = bad;
+      if (at > 0) points.xyz[(at + 1 < 400000 ? at + 1 : at) * 3] = bad;  // a later one is not named
+      const std::vector<float> single(points.xyz.begin(), points.xyz.end());
+      const std::string expected = "point " + std::to_string(at) + " has a non-finite coordinate";
+      for (Backend backend : {Backend::serial, Backend::openmp}) {
+        SearchOptions options;
+        options.horizon = 0.1;
+        options.backend = backend;
+        for (const PointView view : {points.view(), PointView(single.data(), 400000, 3)}) {
+          try {
+            search(view, options);
+            ADD_FAILURE() << "accepted a non-finite coordinate at point " << at;
+          } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+          }
+        }
+      }
+    }
+}
+
+}  // namespace
+}  // namespace horizon

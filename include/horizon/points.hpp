@@ -29,6 +29,8 @@ public:
   bool is_float32() const { return single_; }
   /// The caller's float64 coordinates (nullptr for a float32 view).
   const double* float64_data() const { return single_ ? nullptr : static_cast<const double*>(data_); }
+  /// The caller's float32 coordinates (nullptr for a float64 view).
+  const float* float32_data() const { return single_ ? static_cast<const float*>(data_) : nullptr; }
 
   /// Coordinate `axis` of point `i`, as a double.
   double operator()(std::size_t i, int axis) const {
@@ -61,6 +63,11 @@ struct PointSet {
 /// Throws horizon::Error naming the first point with a NaN or infinite coordinate, or a view
 /// whose dimension is not 2 or 3.
 void validate(PointView points);
+
+namespace detail {
+/// validate() on `threads` cores (0: all).
+void validate_points(PointView points, int threads);
+}  // namespace detail
 
 /// Copies `points` (as doubles) into `into` from point `at` on (`into` holds room for them).
 void copy_points(PointView points, PointSet& into, std::size_t at = 0);

@@ -1,6 +1,11 @@
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <string>
+
+#include <omp.h>
 
 #include "horizon/error.hpp"
 #include "horizon/metric.hpp"
@@ -22,17 +27,55 @@ PointSet to_point_set(PointView points) {
   return set;
 }
 
-void validate(PointView points) {
+namespace {
+
+/// Whether any of v[begin, end) is NaN or infinite: a test of the exponent bits, which the
+/// compiler vectorises (std::isfinite in the loop is not).
+template <typename Float, typename Bits, Bits exponent>
+bool any_non_finite(const Float* v, std::size_t begin, std::size_t end) {
+  bool bad = false;
+  for (std::size_t i = begin; i < end; ++i) {
+    Bits bits;
+    std::memcpy(&bits, v + i, sizeof(bits));
+    bad |= (bits & exponent) == exponent;
+  }
+  return bad;
+}
+
+bool any_non_finite(PointView points, std::size_t begin, std::size_t end) {
+  if (points.is_float32())
+    return any_non_finite<float, std::uint32_t, 0x7f800000u>(points.float32_data(), begin, end);
+  return any_non_finite<double, std::uint64_t, 0x7ff0000000000000ull>(points.float64_data(), begin, end);
+}
+
+}  // namespace
+
+void detail::validate_points(PointView points, int threads) {
   if (points.dims() != 2 && points.dims() != 3)
     throw Error("points must have 2 or 3 coordinates, not " + std::to_string(points.dims()));
   if (points.size() > static_cast<std::size_t>(std::numeric_limits<point_id>::max()))
     throw Error(std::to_string(points.size()) + " points: at most 2^31-1 per search");
-  for (std::size_t i = 0; i < points.size(); ++i)
-    for (int a = 0; a < points.dims(); ++a)
-      if (!std::isfinite(points(i, a)))
-        throw Error("point " + std::to_string(i) + " has a non-finite coordinate (" +
-                    std::to_string(points(i, a)) + ")");
+  // Pieces tested on all cores (1.5 GB of coordinates at memory speed); the first bad piece
+  // is then searched for its first bad value.
+  constexpr std::size_t piece = std::size_t{1} << 16;
+  const std::size_t values = points.size() * static_cast<std::size_t>(points.dims());
+  const auto pieces = static_cast<std::int64_t>((values + piece - 1) / piece);
+  std::int64_t first_bad = pieces;
+  const int team = threads > 0 ? threads : omp_get_max_threads();
+#pragma omp parallel for schedule(static) reduction(min : first_bad) num_threads(team) if (pieces > 4)
+  for (std::int64_t p = 0; p < pieces; ++p) {
+    const std::size_t begin = static_cast<std::size_t>(p) * piece;
+    if (any_non_finite(points, begin, std::min(values, begin + piece))) first_bad = std::min(first_bad, p);
+  }
+  for (std::size_t at = static_cast<std::size_t>(first_bad) * piece; at < values; ++at) {
+    const std::size_t i = at / static_cast<std::size_t>(points.dims());
+    const int a = static_cast<int>(at % static_cast<std::size_t>(points.dims()));
+    if (!std::isfinite(points(i, a)))
+      throw Error("point " + std::to_string(i) + " has a non-finite coordinate (" + std::to_string(points(i, a)) + ")");
+  }
 }
+
+void validate(PointView points) { detail::validate_points(points, 0); }
 
 Metric parse_metric(const std::string& name) {
   if (name == "l2" || name == "euclidean") return Metric::euclidean;

@@ -40,7 +40,9 @@ bool backend_available(Backend backend) {
 const char* cpu_simd_target() { return detail::simd_target(); }
 
 void detail::validate_search(PointView points, const SearchOptions& options) {
-  validate(points);
+  // The serial backend stays on one core; the others check the points on all of theirs.
+  const Backend backend = options.backend;
+  validate_points(points, backend == Backend::serial ? 1 : backend == Backend::openmp ? options.threads : 0);
   validate_horizon(options.horizon, options.cells_per_horizon);
   if (options.queries > points.size())
     throw Error("queries (" + std::to_string(options.queries) + ") exceeds the " + std::to_string(points.size()) +
