@@ -17,7 +17,7 @@ import numpy as np
 
 from . import _horizon
 
-__all__ = ["search", "NeighborList", "DeviceNeighborList", "load", "lattice", "random_cloud", "clustered_cloud", "backend_available"]
+__all__ = ["search", "NeighborList", "DeviceNeighborList", "VerletList", "load", "lattice", "random_cloud", "clustered_cloud", "backend_available"]
 
 
 class NeighborList:
@@ -138,6 +138,50 @@ class NeighborList:
                 if os.path.exists(temporary):
                     os.remove(temporary)
                 raise
+
+
+class VerletList:
+    """A Verlet list for moving points (MD, SPH): the pairs within horizon + skin, searched once;
+    refresh(points) then gives the exact horizon list of new positions from those candidates,
+    equal to search(points, horizon, ...) while needs_rebuild(points) is False, i.e. until some
+    point has moved by skin / 2 or more since the build (then build a new VerletList).
+
+        verlet = horizon.VerletList(x, horizon=0.3, skin=0.03)
+        for step in range(steps):
+            x = advance(x)
+            if verlet.needs_rebuild(x):
+                verlet = horizon.VerletList(x, 0.3, 0.03)
+            nl = verlet.refresh(x)
+
+    The options are search()'s (host arrays; no periodic box); the list keeps a copy of the
+    positions at the build. The number of points and their dimension must stay the same."""
+
+    def __init__(self, points, horizon, skin, *, backend="auto", metric="l2", half=False, sort_rows=True, threads=0,
+                 device=0, cells_per_horizon=1):
+        if hasattr(points, "__cuda_array_interface__"):
+            raise ValueError("VerletList takes host arrays (the GPU Verlet list is not built yet)")
+        self.half = bool(half)
+        self.threads = int(threads)
+        self._owned = _horizon.build_verlet(_host_points(points), float(horizon), float(skin), metric, self.half,
+                                            bool(sort_rows), backend, self.threads, int(device),
+                                            int(cells_per_horizon))
+
+    def needs_rebuild(self, points):
+        """True once a point of `points` has moved by skin / 2 or more since the build."""
+        return self._owned.needs_rebuild(_host_points(points), self.threads)
+
+    def refresh(self, points):
+        """The exact list of `points` within the horizon, from the stored candidates."""
+        owned = self._owned.refresh(_host_points(points), self.threads)
+        return NeighborList(owned.offsets, owned.indices, self.half)
+
+    @property
+    def candidates(self):
+        """The pairs within horizon + skin of the positions at the build (read-only views)."""
+        offsets, indices = self._owned.candidate_offsets, self._owned.candidate_indices
+        offsets.flags.writeable = False
+        indices.flags.writeable = False
+        return NeighborList(offsets, indices, self.half)
 
 
 class _CudaArray:

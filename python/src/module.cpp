@@ -20,6 +20,7 @@
 #include "horizon/generate.hpp"
 #include "horizon/io.hpp"
 #include "horizon/search.hpp"
+#include "horizon/verlet_list.hpp"
 
 namespace py = pybind11;
 
@@ -28,6 +29,11 @@ namespace {
 /// A list owned by Python.
 struct OwnedList {
   horizon::NeighborList list;
+};
+
+/// A Verlet list owned by Python (it keeps its own copy of the positions at the build).
+struct OwnedVerlet {
+  horizon::VerletList list;
 };
 
 /// A list in GPU memory owned by Python, with the stream it was built on (the consumers'
@@ -82,6 +88,17 @@ OwnedList search(py::array points, double horizon, const std::string& metric, bo
   }
   py::gil_scoped_release unlocked;
   return OwnedList{horizon::search(view, options)};
+}
+
+OwnedVerlet build_verlet(py::array points, double horizon, double skin, const std::string& metric, bool half,
+                         bool sort_rows, const std::string& backend, int threads, int device, int cells_per_horizon) {
+  const horizon::PointView view = point_view(points);
+  horizon::SearchOptions options = options_of(horizon, metric, half, sort_rows, cells_per_horizon);
+  options.backend = horizon::parse_backend(backend);
+  options.threads = threads;
+  options.device = device;
+  py::gil_scoped_release unlocked;
+  return OwnedVerlet{horizon::VerletList(view, options, skin)};
 }
 
 /// A list copied from NumPy's int64 offsets and int32 indices.
@@ -170,6 +187,26 @@ PYBIND11_MODULE(_horizon, m) {
         return view(list.indices().data(), list.indices().size(), self);
       });
 
+  py::class_<OwnedVerlet>(m, "OwnedVerlet")
+      .def("needs_rebuild", [](const OwnedVerlet& v, py::array points, int threads) {
+        const horizon::PointView view = point_view(points);
+        py::gil_scoped_release unlocked;
+        return v.list.needs_rebuild(view, threads);
+      })
+      .def("refresh", [](const OwnedVerlet& v, py::array points, int threads) {
+        const horizon::PointView view = point_view(points);
+        py::gil_scoped_release unlocked;
+        return OwnedList{v.list.refresh(view, threads)};
+      })
+      .def_property_readonly("candidate_offsets", [](py::object self) {
+        const auto& list = self.cast<const OwnedVerlet&>().list.candidates();
+        return view(list.offsets().data(), list.offsets().size(), self);
+      })
+      .def_property_readonly("candidate_indices", [](py::object self) {
+        const auto& list = self.cast<const OwnedVerlet&>().list.candidates();
+        return view(list.indices().data(), list.indices().size(), self);
+      });
+
   py::class_<OwnedDeviceList>(m, "OwnedDeviceList")
       .def_property_readonly("offsets_pointer", [](const OwnedDeviceList& l) { return reinterpret_cast<std::uintptr_t>(l.list.offsets()); })
       .def_property_readonly("indices_pointer", [](const OwnedDeviceList& l) { return reinterpret_cast<std::uintptr_t>(l.list.indices()); })
@@ -187,6 +224,9 @@ PYBIND11_MODULE(_horizon, m) {
   m.def("search", &search, py::arg("points"), py::arg("horizon"), py::arg("metric"), py::arg("half"),
         py::arg("sort_rows"), py::arg("backend"), py::arg("threads"), py::arg("device"), py::arg("devices"),
         py::arg("cells_per_horizon"), py::arg("box"), py::arg("references"));
+  m.def("build_verlet", &build_verlet, py::arg("points"), py::arg("horizon"), py::arg("skin"), py::arg("metric"),
+        py::arg("half"), py::arg("sort_rows"), py::arg("backend"), py::arg("threads"), py::arg("device"),
+        py::arg("cells_per_horizon"));
   m.def("write_vtk", &write_vtk, py::arg("path"), py::arg("points"), py::arg("offsets"), py::arg("indices"),
         py::arg("half"), py::arg("bonds"), py::arg("blocks"));
   m.def("filter_bonds", &filter_bonds, py::arg("offsets"), py::arg("indices"), py::arg("half"), py::arg("points"),

@@ -289,3 +289,33 @@ def test_filters_of_a_query_list_use_the_references():
         assert np.array_equal(cut.row(i), row[~crosses])
     with pytest.raises(ValueError, match="references="):
         nl.filter_bonds(queries, crack)
+
+
+@pytest.mark.parametrize("half", [False, True])
+def test_verlet_list_refreshes_moved_points_exactly_until_a_rebuild_is_due(half):
+    rng = np.random.default_rng(3)
+    points = horizon.random_cloud(3000, 3, 5, 4.0)
+    h, skin = 0.4, 0.1
+    verlet = horizon.VerletList(points, h, skin, half=half, backend="openmp")
+    wider = horizon.search(points, h + skin, half=half)
+    assert np.array_equal(verlet.candidates.offsets, wider.offsets)
+    assert np.array_equal(verlet.candidates.indices, wider.indices)
+    for _ in range(3):  # moves of up to skin / 5 per axis: at most 0.35 skin in all
+        moved = points + rng.uniform(-skin / 5, skin / 5, points.shape)
+        assert not verlet.needs_rebuild(moved)
+        refreshed = verlet.refresh(moved)
+        assert [list(r) for r in rows_of(refreshed)] == [list(r) for r in brute_force(moved, h, half=half)]
+    far = points.copy()
+    far[1234] += [0.0, skin / 2, 0.0]
+    assert verlet.needs_rebuild(far)
+
+
+def test_verlet_list_errors():
+    points = horizon.random_cloud(100, 3, 1)
+    with pytest.raises(ValueError, match="skin must be finite and > 0"):
+        horizon.VerletList(points, 0.5, 0.0)
+    verlet = horizon.VerletList(points, 0.5, 0.1)
+    with pytest.raises(ValueError, match="built for 100 points"):
+        verlet.refresh(points[:99])
+    with pytest.raises(ValueError, match="built for 100 points"):
+        verlet.needs_rebuild(points[:, :2])
