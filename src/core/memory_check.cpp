@@ -34,8 +34,8 @@ std::string size_text(std::size_t bytes) {
 
 void check_list_fits(std::int64_t entries, const SearchOptions& options) {
   const std::size_t needed = static_cast<std::size_t>(entries) * sizeof(point_id);
-  // The block kept for the next list is free memory to this search (allocate_large reuses or
-  // frees it).
+  // The blocks kept for the next lists are free memory to this search (allocate_large reuses
+  // or frees them).
   const std::size_t available = memory_available();
   const std::size_t limit = options.max_memory ? options.max_memory
                             : available      ? available + cached_buffer_bytes()

@@ -87,7 +87,7 @@ __global__ void fill_families(DeviceIndexView ix, PassArgs a) {
 /// tile, padded so that both the per-thread and the per-row accesses avoid bank conflicts),
 /// sorted there by insertion when Sorted, stored by the warp row after row. A longer row (a
 /// dense spot of a clustered cloud) is stored straight into the list and its id appended to
-/// a.spilled, to be sorted afterwards (sort_listed_rows).
+/// a.spilled, to be sorted afterwards (sort_rows_on_chip over those rows).
 template <Metric M, int D, bool Half, bool Sorted, int Rows>
 __global__ void __launch_bounds__(staged_block(Rows)) fill_short_rows(DeviceIndexView ix, PassArgs a) {
   constexpr int pitch = 33;  // rows[j * pitch + lane]: 32 lanes, +1 against bank conflicts

@@ -24,7 +24,8 @@ struct IdLess {
 };
 
 /// The rows a sort pass takes: the r-th row of a batch, or, with `listed`, the row of the r-th
-/// id in that list (the long rows the short-row fill stored unsorted), of the batch's `first`.
+/// id in that list (the rows a staged fill could not stage and stored unsorted); `first` is the
+/// batch's first id.
 struct RowSet {
   const std::int64_t* offsets;  // the batch's offsets: row r is [offsets[r], offsets[r + 1]) - base
   std::int64_t base;
