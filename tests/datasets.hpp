@@ -43,6 +43,11 @@ inline std::vector<Dataset> datasets(int dims) {
   all.push_back({"clustered", clustered_cloud(1200, 6, 0.4, dims, 3), 0.25});
   // Dense: hundreds of candidates per cell, where rows come from a stencil sorted per cell.
   all.push_back({"dense", random_cloud(1500, dims, 13), dims == 3 ? 3.0 : 2.5});
+  // Density growing along x, ids in no spatial order: rows of every length from 0 to about 70,
+  // so the row sort meets each of its sizes (one to four vectors, and longer).
+  PointSet graded = random_cloud(1500, dims, 17);
+  for (std::size_t i = 0; i < graded.size(); ++i) graded.xyz[i * dims] = 10.0 * std::cbrt(graded.xyz[i * dims] / 10.0);
+  all.push_back({"graded", graded, dims == 3 ? 1.6 : 0.7});
   const int n = dims == 3 ? 9 : 30;
   all.push_back({"lattice_m1.5", lattice(n, dims), 1.5 * 10.0 / n});
   all.push_back({"lattice_m3.015", lattice(n, dims), 3.015 * 10.0 / n});
