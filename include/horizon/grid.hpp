@@ -39,7 +39,10 @@ struct Grid {
 
   /// Cell coordinate along `axis` of a point with coordinate x (padding included).
   std::int64_t cell_of(double x, int axis) const {
-    return static_cast<std::int64_t>(std::floor((x - origin[axis]) / cell_side)) + cells_per_horizon;
+    // floor by truncation and a correction: std::floor is a library call in a portable x86 build
+    const double t = (x - origin[axis]) / cell_side;
+    const auto truncated = static_cast<std::int64_t>(t);
+    return truncated - (t < static_cast<double>(truncated)) + cells_per_horizon;
   }
   /// Number of cells in the grid (as a double: it may not fit any integer when sparse).
   double cell_count() const {

@@ -44,18 +44,25 @@ void CellIndex::sort_dense(PointView points, int threads) {
   start_by_id_.assign(static_cast<std::size_t>(cells) + 1, 0);
   std::vector<std::int64_t> id(count_);
   std::int64_t* start = start_by_id_.data();
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+  // One thread counts and places with plain increments: a locked add per point cost 40 % of
+  // the serial sort (AMD Zen 5, 10^6 points: place 6.1 -> 1.3 ms).
+  const bool atomic = threads > 1;
+#pragma omp parallel for schedule(static) num_threads(threads) if (atomic)
   for (std::int64_t i = 0; i < n; ++i) {
     const auto c = cell_of_point(points, grid_, static_cast<std::size_t>(i));
     id[i] = grid_.linear_id(c[0], c[1], c[2]);
-    std::atomic_ref<std::int64_t>(start[id[i] + 1]).fetch_add(1, std::memory_order_relaxed);
+    if (atomic)
+      std::atomic_ref<std::int64_t>(start[id[i] + 1]).fetch_add(1, std::memory_order_relaxed);
+    else
+      ++start[id[i] + 1];
   }
   detail::inclusive_scan(start_by_id_.data(), start_by_id_.size(), threads);
 
   std::vector<std::int64_t> next(start_by_id_.begin(), start_by_id_.end() - 1);
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+#pragma omp parallel for schedule(static) num_threads(threads) if (atomic)
   for (std::int64_t i = 0; i < n; ++i) {
-    const std::int64_t at = std::atomic_ref<std::int64_t>(next[id[i]]).fetch_add(1, std::memory_order_relaxed);
+    const std::int64_t at =
+        atomic ? std::atomic_ref<std::int64_t>(next[id[i]]).fetch_add(1, std::memory_order_relaxed) : next[id[i]]++;
     order_[at] = static_cast<point_id>(i);
   }
 
