@@ -114,16 +114,6 @@ HWY_INLINE std::int64_t TestCandidates(V px, V py, V pz, VI self, V threshold, c
   return found;
 }
 
-/// Sorts a short row (reading and writing up to a vector past it). Rows with few descents (a
-/// lattice in input order: at most 5 at m = 1.5) sort fastest by insertion, whose branches the
-/// CPU learns from the rows before; rows in no order (a shuffled lattice: 6 descents typical)
-/// by the network, which never mispredicts (AMD Zen 5, m = 1.5: lattice 0.125 s insertion,
-/// 0.144 s network; shuffled 0.36-0.39 s insertion, 0.24 s network).
-HWY_INLINE void SortRow(point_id* row, std::int64_t count) {
-  constexpr std::int64_t few_descents = 4;
-  if (CountDescents(row, count) <= few_descents || !SortShortRow(row, count)) insertion_sort(row, row + count);
-}
-
 template <Metric M, int D, IdTest Ids, bool Fill>
 void VisitCells(const FamilyPass& pass, CellRun run) {
   const hn::ScalableTag<double> d;
@@ -160,7 +150,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
     const int row_count = index.stencil(c, rows.data());
     std::int64_t candidates = 0;
     for (int r = 0; r < row_count; ++r) candidates += rows[r].end - rows[r].begin;
-    // Padded for the vector stores of TestCandidates and SortShortRow.
+    // Padded for the vector stores of TestCandidates and the loads of SortShortRowTo.
     const std::int64_t row_padding = lanes + static_cast<std::int64_t>(hn::MaxLanes(hn::ScalableTag<point_id>()));
     if (Fill && row_buffer.size() < static_cast<std::size_t>(candidates + row_padding))
       row_buffer.resize(static_cast<std::size_t>(candidates + row_padding));
@@ -193,8 +183,15 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
                                                     rows[r].end, Fill ? row + found : nullptr);
       }
       if constexpr (Fill) {
-        if (options.sort_rows && !sorted_stencil) SortRow(row, found);
         point_id* const place = pass.indices + (offsets[self] - base);
+        if (options.sort_rows && !sorted_stencil) {
+          // In registers by a sorting network, `self` dropped, straight to its place; a longer
+          // row (rare: the stencil is sorted from 256 candidates) by insertion, then copied.
+          // Insertion mispredicts a branch per move on rows in no order: AMD Zen 5, m = 1.5,
+          // shuffled lattice 0.36-0.39 s to fill, 0.19-0.24 s with the network.
+          if (SortShortRowTo(row, found, self_found ? self : point_id{-1}, place, found - self_found)) continue;
+          insertion_sort(row, row + found);
+        }
         std::int64_t before = found;  // the row goes to its place around `self`, if present
         if (self_found) before = std::lower_bound(row, row + found, self) - row;
         if (before > 0)  // an empty row buffer may have no storage at all
