@@ -1,5 +1,9 @@
 #include "horizon/oracle.hpp"
 
+#include <algorithm>
+
+#include "horizon/radii.hpp"
+
 namespace horizon {
 
 namespace {
@@ -67,6 +71,26 @@ NeighborList brute_force(PointView queries, PointView references, const SearchOp
     offsets.push_back(static_cast<std::int64_t>(indices.size()));
   }
   return NeighborList(std::move(offsets), std::move(indices), false);
+}
+
+NeighborList brute_force_with_radii(PointView points, std::span<const double> radii, RadiusRule rule,
+                                    const SearchOptions& options) {
+  Buffer<std::int64_t> offsets{0};
+  Buffer<point_id> indices;
+  SearchOptions pair = options;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    for (std::size_t j = options.half ? i + 1 : 0; j < points.size(); ++j) {
+      switch (rule) {
+        case RadiusRule::gather: pair.horizon = radii[i]; break;
+        case RadiusRule::scatter: pair.horizon = radii[j]; break;
+        case RadiusRule::max: pair.horizon = std::max(radii[i], radii[j]); break;
+        case RadiusRule::min: pair.horizon = std::min(radii[i], radii[j]); break;
+      }
+      if (j != i && neighbours(points, i, points, j, pair)) indices.push_back(static_cast<point_id>(j));
+    }
+    offsets.push_back(static_cast<std::int64_t>(indices.size()));
+  }
+  return NeighborList(std::move(offsets), std::move(indices), options.half);
 }
 
 }  // namespace horizon

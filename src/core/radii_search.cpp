@@ -1,0 +1,236 @@
+#include "horizon/radii.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "horizon/error.hpp"
+#include "horizon/stopwatch.hpp"
+#include "parallel_scan.hpp"
+
+namespace horizon {
+
+RadiusRule parse_radius_rule(const std::string& name) {
+  if (name == "gather") return RadiusRule::gather;
+  if (name == "scatter") return RadiusRule::scatter;
+  if (name == "max") return RadiusRule::max;
+  if (name == "min") return RadiusRule::min;
+  throw Error("unknown radius rule '" + name + "' (expected gather, scatter, max or min)");
+}
+
+const char* radius_rule_name(RadiusRule rule) {
+  switch (rule) {
+    case RadiusRule::gather: return "gather";
+    case RadiusRule::scatter: return "scatter";
+    case RadiusRule::max: return "max";
+    case RadiusRule::min: return "min";
+  }
+  return "?";
+}
+
+namespace {
+
+void validate_radii(PointView points, std::span<const double> radii, RadiusRule rule, const SearchOptions& options) {
+  if (radii.size() != points.size())
+    throw Error("radii: " + std::to_string(radii.size()) + " radii for " + std::to_string(points.size()) + " points");
+  for (std::size_t i = 0; i < radii.size(); ++i)
+    if (!(std::isfinite(radii[i]) && radii[i] > 0))
+      throw Error("radii: point " + std::to_string(i) + " has radius " + std::to_string(radii[i]) +
+                  " (each must be finite and > 0)");
+  if (options.half && (rule == RadiusRule::gather || rule == RadiusRule::scatter))
+    throw Error(std::string("radii: a half list needs a symmetric rule (max or min); with ") + radius_rule_name(rule) +
+                " d(i, j) < r_i does not imply d(j, i) < r_j");
+  if (options.queries != 0) throw Error("radii: SearchOptions::queries is not supported with per-point radii");
+  const double largest = radii.empty() ? 0 : *std::max_element(radii.begin(), radii.end());
+  for (int a = 0; a < 3; ++a)
+    if (options.box[static_cast<std::size_t>(a)] > 0 && !(largest < options.box[static_cast<std::size_t>(a)] / 2))
+      throw Error("radii: the largest radius " + std::to_string(largest) + " must be below half the period (" +
+                  std::to_string(options.box[static_cast<std::size_t>(a)]) + " / 2) on axis " + "xyz"[a]);
+}
+
+/// The metric's accumulated distance of points i and j, each axis's difference the smallest
+/// over the periodic images of j (x_j, x_j + L, x_j - L, rounded, as the search tests them).
+/// The accumulation grows with each |difference|, so this is the nearest image's.
+template <Metric M>
+double accumulated(PointView points, std::size_t i, std::size_t j, const std::array<double, 3>& box) {
+  double d[3] = {0, 0, 0};
+  for (int a = 0; a < points.dims(); ++a) {
+    const double xi = points(i, a), xj = points(j, a);
+    double nearest = std::fabs(xi - xj);
+    if (box[static_cast<std::size_t>(a)] > 0) {
+      const double period = box[static_cast<std::size_t>(a)];
+      nearest = std::min({nearest, std::fabs(xi - (xj + period)), std::fabs(xi - (xj - period))});
+    }
+    d[a] = nearest;
+  }
+  return metric_accumulate<M>(d[0], d[1], d[2]);
+}
+
+/// A list in CSR form under construction.
+struct Rows {
+  Buffer<std::int64_t> offsets;
+  Buffer<point_id> ids;
+};
+
+/// Row i: every j != i of `candidates` row i with d(i, j) < radii[i] (the gather rule), the
+/// candidates coming from one query search per radius class.
+template <Metric M>
+Rows gather(PointView points, std::span<const double> radii, const SearchOptions& options, SearchStats& stats) {
+  const std::size_t n = points.size();
+  const double largest = *std::max_element(radii.begin(), radii.end());
+  // Class c holds the radii in (largest / 2^(c+1), largest / 2^c]; past 30 classes, one more.
+  constexpr int most_classes = 31;
+  std::vector<std::vector<point_id>> members(most_classes);
+  for (std::size_t i = 0; i < n; ++i) {
+    int c = 0;
+    while (c + 1 < most_classes && radii[i] <= std::ldexp(largest, -(c + 1))) ++c;
+    members[static_cast<std::size_t>(c)].push_back(static_cast<point_id>(i));
+  }
+  Buffer<std::int64_t> count(n + 1, 0);
+  std::vector<std::vector<point_id>> kept(most_classes);  // each class's rows, in member order
+  const int threads = options.backend == Backend::serial ? 1 : options.threads > 0 ? options.threads : 0;
+  for (int c = 0; c < most_classes; ++c) {
+    const std::vector<point_id>& member = members[static_cast<std::size_t>(c)];
+    if (member.empty()) continue;
+    PointSet queries{points.dims(), {}};
+    queries.xyz.reserve(member.size() * static_cast<std::size_t>(points.dims()));
+    double reach = 0;
+    for (const point_id i : member) {
+      for (int a = 0; a < points.dims(); ++a) queries.xyz.push_back(points(static_cast<std::size_t>(i), a));
+      reach = std::max(reach, radii[static_cast<std::size_t>(i)]);
+    }
+    SearchOptions class_options = options;
+    class_options.horizon = reach;
+    class_options.half = false;
+    class_options.sort_rows = true;
+    SearchStats class_stats;
+    const NeighborList candidates = search(queries.view(), points, class_options, &class_stats);
+    stats.grid_seconds += class_stats.grid_seconds;
+    stats.search_seconds += class_stats.search_seconds;
+    stats.backend = class_stats.backend;
+    stats.threads = class_stats.threads;
+
+    // Keep flags first, then the kept ids packed: each row's place is known after a scan.
+    Stopwatch clock;
+    std::vector<char> keep(static_cast<std::size_t>(candidates.total()));
+    const auto rows = static_cast<std::int64_t>(member.size());
+    std::vector<std::int64_t> start(member.size() + 1, 0);
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads) if (threads != 1)
+    for (std::int64_t q = 0; q < rows; ++q) {
+      const auto i = static_cast<std::size_t>(member[static_cast<std::size_t>(q)]);
+      const double threshold = metric_threshold(M, radii[i]);
+      std::int64_t found = 0;
+      for (std::int64_t e = candidates.offsets()[q]; e < candidates.offsets()[q + 1]; ++e) {
+        const auto j = static_cast<std::size_t>(candidates.indices()[e]);
+        const bool near = j != i && accumulated<M>(points, i, j, options.box) < threshold;
+        keep[static_cast<std::size_t>(e)] = near;
+        found += near;
+      }
+      start[static_cast<std::size_t>(q) + 1] = found;
+      count[i + 1] = found;
+    }
+    for (std::size_t q = 0; q < member.size(); ++q) start[q + 1] += start[q];
+    std::vector<point_id>& ids = kept[static_cast<std::size_t>(c)];
+    ids.resize(static_cast<std::size_t>(start.back()));
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads) if (threads != 1)
+    for (std::int64_t q = 0; q < rows; ++q) {
+      std::int64_t out = start[static_cast<std::size_t>(q)];
+      for (std::int64_t e = candidates.offsets()[q]; e < candidates.offsets()[q + 1]; ++e)
+        if (keep[static_cast<std::size_t>(e)]) ids[static_cast<std::size_t>(out++)] = candidates.indices()[e];
+    }
+    stats.search_seconds += clock.lap();
+  }
+
+  // Rows in input order.
+  Stopwatch clock;
+  Rows out;
+  out.offsets = std::move(count);
+  for (std::size_t i = 0; i < n; ++i) out.offsets[i + 1] += out.offsets[i];
+  out.ids.resize(static_cast<std::size_t>(out.offsets[n]));
+  for (int c = 0; c < most_classes; ++c) {
+    const std::vector<point_id>& member = members[static_cast<std::size_t>(c)];
+    const std::vector<point_id>& ids = kept[static_cast<std::size_t>(c)];
+    std::size_t from = 0;
+    for (const point_id i : member) {
+      const auto length = static_cast<std::size_t>(out.offsets[static_cast<std::size_t>(i) + 1] -
+                                                   out.offsets[static_cast<std::size_t>(i)]);
+      std::copy_n(ids.begin() + static_cast<std::ptrdiff_t>(from), length,
+                  out.ids.begin() + out.offsets[static_cast<std::size_t>(i)]);
+      from += length;
+    }
+  }
+  stats.search_seconds += clock.lap();
+  return out;
+}
+
+/// Row j of the transpose holds every i whose row holds j, ascending.
+Rows transpose(const Rows& rows) {
+  const std::size_t n = rows.offsets.size() - 1;
+  Rows out;
+  out.offsets.assign(n + 1, 0);
+  for (const point_id j : rows.ids) ++out.offsets[static_cast<std::size_t>(j) + 1];
+  for (std::size_t i = 0; i < n; ++i) out.offsets[i + 1] += out.offsets[i];
+  out.ids.resize(rows.ids.size());
+  Buffer<std::int64_t> next(out.offsets.begin(), out.offsets.end() - 1);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::int64_t e = rows.offsets[i]; e < rows.offsets[i + 1]; ++e)
+      out.ids[static_cast<std::size_t>(next[static_cast<std::size_t>(rows.ids[static_cast<std::size_t>(e)])]++)] =
+          static_cast<point_id>(i);
+  return out;
+}
+
+/// Row i: the union (max) or intersection (min) of the sorted rows i of a and b; with `half`,
+/// only ids above i.
+Rows combine(const Rows& a, const Rows& b, bool unite, bool half) {
+  const std::size_t n = a.offsets.size() - 1;
+  Rows out;
+  out.offsets.assign(n + 1, 0);
+  out.ids.reserve(unite ? a.ids.size() + b.ids.size() : std::min(a.ids.size(), b.ids.size()));
+  std::vector<point_id> row;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto first_a = a.ids.begin() + a.offsets[i], last_a = a.ids.begin() + a.offsets[i + 1];
+    const auto first_b = b.ids.begin() + b.offsets[i], last_b = b.ids.begin() + b.offsets[i + 1];
+    row.clear();
+    if (unite)
+      std::set_union(first_a, last_a, first_b, last_b, std::back_inserter(row));
+    else
+      std::set_intersection(first_a, last_a, first_b, last_b, std::back_inserter(row));
+    const auto from = half ? std::upper_bound(row.begin(), row.end(), static_cast<point_id>(i)) : row.begin();
+    out.ids.insert(out.ids.end(), from, row.end());
+    out.offsets[i + 1] = static_cast<std::int64_t>(out.ids.size());
+  }
+  return out;
+}
+
+template <Metric M>
+Rows search_rows(PointView points, std::span<const double> radii, RadiusRule rule, const SearchOptions& options,
+                 SearchStats& stats) {
+  Rows gathered = gather<M>(points, radii, options, stats);
+  if (rule == RadiusRule::gather) return gathered;
+  Stopwatch clock;
+  Rows scattered = transpose(gathered);
+  if (rule != RadiusRule::scatter) scattered = combine(gathered, scattered, rule == RadiusRule::max, options.half);
+  stats.search_seconds += clock.lap();
+  return scattered;
+}
+
+}  // namespace
+
+NeighborList search_with_radii(PointView points, std::span<const double> radii, RadiusRule rule,
+                               const SearchOptions& options, SearchStats* stats) {
+  validate_radii(points, radii, rule, options);
+  SearchStats local;
+  SearchStats& out = stats ? *stats : local;
+  out = SearchStats{};
+  if (points.empty()) return NeighborList(Buffer<std::int64_t>{0}, Buffer<point_id>{}, options.half);
+  Rows rows;
+  switch (options.metric) {
+    case Metric::euclidean: rows = search_rows<Metric::euclidean>(points, radii, rule, options, out); break;
+    case Metric::manhattan: rows = search_rows<Metric::manhattan>(points, radii, rule, options, out); break;
+    case Metric::chebyshev: rows = search_rows<Metric::chebyshev>(points, radii, rule, options, out); break;
+  }
+  return NeighborList(std::move(rows.offsets), std::move(rows.ids), options.half);
+}
+
+}  // namespace horizon

@@ -1,0 +1,125 @@
+// Per-point radii: every rule x backend x metric x dimension x list kind (x periodic box) against
+// the brute-force oracle, which tests each pair with the radius the rule gives it.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <tuple>
+
+#include "datasets.hpp"
+#include "horizon/error.hpp"
+#include "horizon/oracle.hpp"
+#include "horizon/radii.hpp"
+#include "require_backend.hpp"
+
+namespace horizon::testing {
+namespace {
+
+/// Radii from `low` to `high` times the dataset's horizon, log-uniform: several radius classes.
+std::vector<double> radii_for(const Dataset& data, double low, double high, std::uint64_t seed) {
+  if (low == 0) return std::vector<double>(data.points.size());
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> exponent(std::log(low), std::log(high));
+  std::vector<double> radii(data.points.size());
+  for (double& r : radii) r = data.horizon * std::exp(exponent(rng));
+  return radii;
+}
+
+using Case = std::tuple<Backend, RadiusRule, Metric, int /*dims*/, bool /*half*/>;
+
+class RadiiTest : public ::testing::TestWithParam<Case> {};
+
+TEST_P(RadiiTest, SameListAsBruteForce) {
+  const auto [backend, rule, metric, dims, half] = GetParam();
+  require(backend);
+  if (::testing::Test::IsSkipped() || ::testing::Test::HasFailure()) return;
+  if (half && (rule == RadiusRule::gather || rule == RadiusRule::scatter)) GTEST_SKIP() << "refused: see RadiiErrors";
+  for (const Dataset& data : datasets(dims)) {
+    if (data.name == "huge_extent") continue;  // radii spanning 10x a 10^-3 horizon over 10^12
+    SearchOptions options = options_for(data, metric, 1, half, backend);
+    // Radii over 10x (four classes); all equal (one class: the same list as one horizon); and
+    // two values, 2/3 and 1 of the horizon: on integer_ties, pairs exactly at the smaller radius
+    // come from the search at the larger one and must be dropped.
+    for (const auto& [low, high] : {std::pair{0.3, 3.0}, std::pair{1.0, 1.0}, std::pair{0.0, 0.0}}) {
+      std::vector<double> radii = radii_for(data, low, high, 5);
+      if (low == 0)
+        for (std::size_t i = 0; i < radii.size(); ++i) radii[i] = data.horizon * (i % 3 ? 1.0 : 2.0 / 3.0);
+      const NeighborList list = search_with_radii(data.points.view(), radii, rule, options);
+      const NeighborList expected = brute_force_with_radii(data.points.view(), radii, rule, options);
+      const std::string where = data.name + " radii " + std::to_string(low) + "-" + std::to_string(high);
+      ASSERT_EQ(list.offsets(), expected.offsets()) << where;
+      EXPECT_EQ(list.indices(), expected.indices()) << where;
+      EXPECT_EQ(list.is_half(), half);
+      if (low == 1.0 && high == 1.0 && data.points.size() > 0) {  // one radius: the plain search's list
+        SearchOptions plain = options;
+        plain.horizon = radii[0];
+        EXPECT_EQ(list.indices(), search(data.points.view(), plain).indices()) << where;
+      }
+    }
+  }
+}
+
+TEST_P(RadiiTest, PeriodicBoxMatchesBruteForce) {
+  const auto [backend, rule, metric, dims, half] = GetParam();
+  require(backend);
+  if (::testing::Test::IsSkipped() || ::testing::Test::HasFailure()) return;
+  if (half && (rule == RadiusRule::gather || rule == RadiusRule::scatter)) GTEST_SKIP() << "refused: see RadiiErrors";
+  // 600 points in [0, 10)^dims, periodic in x and y (open in z): radii 0.4 ... 2.4.
+  PointSet points = random_cloud(600, dims, 23);
+  Dataset data{"box", points, 0.8};
+  SearchOptions options = options_for(data, metric, 1, half, backend);
+  options.box = {10, 10, 0};
+  const std::vector<double> radii = radii_for(data, 0.5, 3.0, 9);
+  const NeighborList list = search_with_radii(points.view(), radii, rule, options);
+  const NeighborList expected = brute_force_with_radii(points.view(), radii, rule, options);
+  ASSERT_EQ(list.offsets(), expected.offsets());
+  EXPECT_EQ(list.indices(), expected.indices());
+}
+
+std::string case_name(const ::testing::TestParamInfo<Case>& info) {
+  const auto [backend, rule, metric, dims, half] = info.param;
+  return std::string(backend_name(backend)) + "_" + radius_rule_name(rule) + "_" + metric_name(metric) + "_" +
+         std::to_string(dims) + "d" + (half ? "_half" : "_full");
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    AllBackends, RadiiTest,
+    ::testing::Combine(::testing::Values(Backend::serial, Backend::openmp, Backend::cuda),
+                       ::testing::Values(RadiusRule::gather, RadiusRule::scatter, RadiusRule::max, RadiusRule::min),
+                       ::testing::Values(Metric::euclidean, Metric::manhattan, Metric::chebyshev),
+                       ::testing::Values(2, 3), ::testing::Bool()),
+    case_name);
+
+TEST(RadiiErrors, NameThePointOrTheRule) {
+  const PointSet points = lattice(4);
+  SearchOptions options;
+  std::vector<double> radii(points.size(), 1.0);
+  auto message = [&](RadiusRule rule) {
+    try {
+      search_with_radii(points.view(), radii, rule, options);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  radii[7] = -0.5;
+  EXPECT_EQ(message(RadiusRule::gather), "radii: point 7 has radius -0.500000 (each must be finite and > 0)");
+  radii[7] = std::nan("");
+  EXPECT_NE(message(RadiusRule::max).find("point 7"), std::string::npos);
+  radii[7] = 1.0;
+  radii.pop_back();
+  EXPECT_EQ(message(RadiusRule::gather), "radii: 63 radii for 64 points");
+  radii.push_back(1.0);
+  options.half = true;
+  EXPECT_NE(message(RadiusRule::scatter).find("half list needs a symmetric rule"), std::string::npos);
+  EXPECT_EQ(message(RadiusRule::min), "no error");
+  options.half = false;
+  options.box = {12, 0, 0};
+  radii[3] = 6.0;
+  EXPECT_NE(message(RadiusRule::gather).find("largest radius 6.000000 must be below half the period"),
+            std::string::npos);
+  EXPECT_THROW(parse_radius_rule("mean"), Error);
+  EXPECT_EQ(parse_radius_rule("scatter"), RadiusRule::scatter);
+}
+
+}  // namespace
+}  // namespace horizon::testing
