@@ -237,6 +237,33 @@ TEST_F(CliTest, BlockPairsKeepOnlyTheirBonds) {
   expect_refused("search lattice:4 --horizon 3 --blocks three.txt", "20 block ids for 64 points");
 }
 
+TEST_F(CliTest, RadiiGiveEachPointItsOwnHorizon) {
+  // Ten points one apart on a line: point 0 reaches 2.5, the others 0.5 (nobody).
+  std::string line, radii = "2.5\n";
+  for (int i = 0; i < 10; ++i) line += std::to_string(i) + " 0 0\n";
+  for (int i = 1; i < 10; ++i) radii += "0.5\n";
+  write("line.txt", line);
+  write("radii.txt", radii);
+  EXPECT_OUTPUT(run("search line.txt --radii radii.txt --json"), "\"neighbors\":2");  // gather: row 0 = 1, 2
+  EXPECT_OUTPUT(run("search line.txt --radii radii.txt --radius-rule scatter --json"), "\"neighbors\":2");
+  EXPECT_OUTPUT(run("search line.txt --radii radii.txt --radius-rule max --json"), "\"neighbors\":4");
+  EXPECT_OUTPUT(run("search line.txt --radii radii.txt --radius-rule max --half --json"), "\"neighbors\":2");
+  EXPECT_OUTPUT(run("search line.txt --radii radii.txt --radius-rule min --json"), "\"neighbors\":0");
+  const Result vtk = run("search line.txt --radii radii.txt --vtk line.vtu --quiet");
+  ASSERT_EQ(vtk.status, 0) << vtk.output;
+  std::ifstream vtu(dir_ / "line.vtu");
+  const std::string xml((std::istreambuf_iterator<char>(vtu)), {});
+  EXPECT_NE(xml.find("Name=\"radius\""), std::string::npos);
+  write("bad.txt", "2.5\n-1\n0.5\n0.5\n0.5\n0.5\n0.5\n0.5\n0.5\n0.5\n");
+  expect_refused("search line.txt --radii bad.txt", "radii: point 1 has radius -1.000000 (each must be finite and > 0)");
+  write("short.txt", "1\n1\n");
+  expect_refused("search line.txt --radii short.txt", "short.txt: 2 radii for 10 points");
+  write("word.txt", "1\nwide\n");
+  expect_refused("search line.txt --radii word.txt", "word.txt:2: expected one radius (a number)");
+  expect_refused("search line.txt --radii radii.txt --half", "a half list needs a symmetric rule (max or min)");
+  expect_refused("search line.txt", "--horizon D or --radii FILE is required");
+}
+
 TEST_F(CliTest, MaxMemoryStreamsTheListToItsFilesOrRefusesIt) {
   // A list larger than the memory allowed, with nowhere to stream it to (no --out, CSV, VTK):
   // refused with its size and the ways out.

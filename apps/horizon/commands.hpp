@@ -22,6 +22,7 @@ struct SearchArgs {
   std::string vtk;                              // ParaView file (.vtu) of the points
   std::string bond_filters;                     // JSON file of rectangles and disks that cut bonds
   std::string blocks, block_pairs;              // a block id per point; the block pairs that bond
+  std::string radii, radius_rule = "gather";    // a radius per point, and how a pair combines two
   double horizon = 0;
   int threads = 0, cells_per_horizon = 1, device = 0;
   bool half = false, unsorted = false, json = false, quiet = false, vtk_bonds = false;

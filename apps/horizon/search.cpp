@@ -12,6 +12,7 @@
 #include "horizon/cuda.hpp"
 #include "horizon/error.hpp"
 #include "horizon/io.hpp"
+#include "horizon/radii.hpp"
 #include "horizon/search.hpp"
 #include "horizon/stopwatch.hpp"
 
@@ -31,9 +32,15 @@ void run_search(const SearchArgs& args) {
   if (!args.blocks.empty()) references.blocks = read_blocks(args.blocks, references.size());
   const PointSet queries = args.queries.empty() ? PointSet{} : load_input(args.queries);
   const PointSet& points = args.queries.empty() ? references : queries;  // the rows
+  const std::vector<double> radii = args.radii.empty() ? std::vector<double>{} : read_radii(args.radii, references.size());
   const double read_seconds = clock.lap();
 
-  const SearchOptions options = search_options(args);
+  SearchOptions options = search_options(args);
+  const RadiusRule radius_rule = parse_radius_rule(args.radius_rule);
+  if (!radii.empty()) {
+    if (!args.queries.empty()) throw Error("--radii with --queries: not supported (one radius per input point)");
+    for (const double r : radii) options.horizon = std::max(options.horizon, r);  // the filters' reach
+  }
   const std::vector<BondFilter> filters =
       args.bond_filters.empty() ? std::vector<BondFilter>{} : read_bond_filters(args.bond_filters);
   if (!filters.empty() && (options.box[0] > 0 || options.box[1] > 0 || options.box[2] > 0))
@@ -49,11 +56,12 @@ void run_search(const SearchArgs& args) {
   std::string written;
   std::int64_t streamed = -1;  // entries written in batches, when the list did not fit in memory
   try {
-    list = args.queries.empty() ? search(references.view(), options, &stats)
-                                : search(queries.view(), references.view(), options, &stats);
+    list = !radii.empty()           ? search_with_radii(references.view(), radii, radius_rule, options, &stats)
+           : args.queries.empty() ? search(references.view(), options, &stats)
+                                  : search(queries.view(), references.view(), options, &stats);
   } catch (const ListTooLarge& too_large) {
     const bool periodic = options.box[0] > 0 || options.box[1] > 0 || options.box[2] > 0;
-    const bool plain = args.queries.empty() && filters.empty() && block_pairs.pairs.empty() && args.vtk.empty() && !periodic;
+    const bool plain = args.queries.empty() && radii.empty() && filters.empty() && block_pairs.pairs.empty() && args.vtk.empty() && !periodic;
     if (args.out.empty() || args.format != "npy" || !plain) throw;
     // It fits on disk: built again in batches of half the memory allowed, each appended to the files.
     progress.say("the list does not fit in memory: writing it to " + args.out + " in batches, on the CPU");
@@ -85,7 +93,7 @@ void run_search(const SearchArgs& args) {
   }
   if (!args.vtk.empty()) {
     progress.say("writing " + args.vtk);
-    write_vtk(args.vtk, points, list, args.vtk_bonds);
+    write_vtk(args.vtk, points, list, args.vtk_bonds, radii);
     written += (written.empty() ? "" : ",") + args.vtk;
   }
   const double write_seconds = clock.lap();
@@ -97,7 +105,7 @@ void run_search(const SearchArgs& args) {
         {"points", points.size()},
         {"dims", points.dims},
         {"references", references.size()},
-        {"horizon", args.horizon},
+        {"horizon", options.horizon},
         {"metric", metric_name(options.metric)},
         {"cells_per_horizon", options.cells_per_horizon},
         {"half", options.half},
@@ -115,6 +123,7 @@ void run_search(const SearchArgs& args) {
         {"outputs", written},
     };
     if (streamed >= 0) report["written_in_batches"] = true;
+    if (!radii.empty()) report["radius_rule"] = radius_rule_name(radius_rule);
     if (!filters.empty()) report["bond_filters"] = filters.size();
     if (!block_pairs.pairs.empty()) report["block_pairs"] = block_pairs.pairs.size();
     if (!filters.empty() || !block_pairs.pairs.empty()) report["bonds_cut"] = unfiltered - list.total();
@@ -145,7 +154,8 @@ void run_search(const SearchArgs& args) {
     }
     std::cout << report.dump() << std::endl;
   } else {
-    std::cout << points.size() << " points (" << points.dims << "-D), horizon " << args.horizon
+    std::cout << points.size() << " points (" << points.dims << "-D), " << (radii.empty() ? "horizon " : "radii up to ")
+              << options.horizon << (radii.empty() ? "" : std::string(" (") + radius_rule_name(radius_rule) + ")")
               << ": " << entries << " neighbours (" << (options.half ? "half" : "full")
               << " list, " << static_cast<double>(entries) / std::max<std::size_t>(1, points.size())
               << " per point)\n"
@@ -268,7 +278,14 @@ void add_search(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("search", "build the neighbour list of a point set");
   cmd->add_option("input", args->input, "points: .npy, .csv/.xyz/.txt, Peridigm text, or lattice:N")
       ->required();
-  cmd->add_option("--horizon", args->horizon, "pairs closer than this are neighbours")->required();
+  CLI::Option* horizon = cmd->add_option("--horizon", args->horizon, "pairs closer than this are neighbours");
+  CLI::Option* radii = cmd->add_option("--radii", args->radii,
+                                       "a radius per point instead of --horizon (.npy float, or text one per line)");
+  horizon->excludes(radii);
+  radii->excludes(horizon);
+  cmd->add_option("--radius-rule", args->radius_rule,
+                  "with --radii: gather (d < r_i), scatter (d < r_j), max or min of the two (default gather)")
+      ->check(CLI::IsMember({"gather", "scatter", "max", "min"}));
   cmd->add_option("--backend", args->backend, "auto, serial, openmp or cuda")
       ->check(CLI::IsMember({"auto", "serial", "openmp", "cuda"}));
   cmd->add_option("--threads", args->threads, "openmp threads (0: all cores)")->check(CLI::NonNegativeNumber);
@@ -305,7 +322,10 @@ void add_search(CLI::App& app) {
                   ".npy only) or auto")
       ->check(CLI::IsMember({"auto", "gather", "parallel"}));
 #endif
-  cmd->callback([args] { run_search(*args); });
+  cmd->callback([args, horizon, radii] {
+    if (horizon->count() == 0 && radii->count() == 0) throw Error("search: --horizon D or --radii FILE is required");
+    run_search(*args);
+  });
 }
 
 }  // namespace horizon::cli

@@ -4,6 +4,7 @@
 /// target and renames it, so a failure never leaves a truncated file that looks valid. Every
 /// reader error names the file and, for text, the line.
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,11 @@ PointSet read_points(const std::string& path);
 /// text with one integer per line. Error naming the file (and line) unless there are `points`
 /// ids from 0 to 2^31 - 1.
 std::vector<std::int32_t> read_blocks(const std::string& path, std::size_t points);
+
+/// A radius per point (radii.hpp): `.npy` of float64/float32 (N), or text with one number per
+/// line. Error naming the file (and line) unless there are `points` numbers; their values are
+/// checked by the search (naming the point).
+std::vector<double> read_radii(const std::string& path, std::size_t points);
 
 /// Points to `.npy` (N x dims float64) or, for any other extension, text `x y [z]` lines.
 void write_points(const std::string& path, const PointSet& points);
@@ -49,8 +55,9 @@ inline constexpr std::uint64_t max_vtk_bonds = 10'000'000;
 
 /// ParaView output (VTK XML UnstructuredGrid, `.vtu`, little-endian binary): every point as a
 /// vertex cell with its family size as point data ("family_size") and, when `points.blocks` is
-/// given, its block ("block"); with `bonds`, every pair also as a line cell (refused above
-/// max_vtk_bonds). 2-D points get z = 0.
-void write_vtk(const std::string& path, const PointSet& points, const NeighborList& list, bool bonds);
+/// given, its block ("block"), and its radius ("radius") when `radii` are; with `bonds`, every
+/// pair also as a line cell (refused above max_vtk_bonds). 2-D points get z = 0.
+void write_vtk(const std::string& path, const PointSet& points, const NeighborList& list, bool bonds,
+               std::span<const double> radii = {});
 
 }  // namespace horizon

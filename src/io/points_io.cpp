@@ -146,6 +146,35 @@ std::vector<std::int32_t> read_blocks(const std::string& path, std::size_t point
   return blocks;
 }
 
+std::vector<double> read_radii(const std::string& path, std::size_t points) {
+  std::vector<double> radii;
+  if (ends_with(path, ".npy")) {
+    const detail::NpyArray array = detail::read_npy(path);
+    if (array.shape.size() != 1 || array.type[0] != 'f')
+      throw Error(path + ": expected a 1-D array of radii (float64 or float32)");
+    radii.resize(array.elements());
+    for (std::size_t i = 0; i < radii.size(); ++i) {
+      if (array.type == "f8") {
+        std::memcpy(&radii[i], array.bytes.data() + 8 * i, 8);
+      } else {
+        float r = 0;
+        std::memcpy(&r, array.bytes.data() + 4 * i, 4);
+        radii[i] = r;
+      }
+    }
+  } else {
+    for_each_line(path, [&](const std::vector<std::string_view>& fields, std::size_t number) {
+      double r = 0;
+      if (fields.size() != 1 || !parse_number(fields[0], r))
+        throw Error(path + ":" + std::to_string(number) + ": expected one radius (a number)");
+      radii.push_back(r);
+    });
+  }
+  if (radii.size() != points)
+    throw Error(path + ": " + std::to_string(radii.size()) + " radii for " + std::to_string(points) + " points");
+  return radii;
+}
+
 PointSet read_points(const std::string& path) {
   return ends_with(path, ".npy") ? points_from_npy(path) : points_from_text(path);
 }

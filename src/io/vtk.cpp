@@ -43,7 +43,8 @@ private:
 
 }  // namespace
 
-void write_vtk(const std::string& path, const PointSet& points, const NeighborList& list, bool bonds) {
+void write_vtk(const std::string& path, const PointSet& points, const NeighborList& list, bool bonds,
+               std::span<const double> radii) {
   const std::size_t n = points.size();
   if (list.size() != n)
     throw Error(path + ": the list has " + std::to_string(list.size()) + " rows for " + std::to_string(n) + " points");
@@ -89,6 +90,12 @@ void write_vtk(const std::string& path, const PointSet& points, const NeighborLi
     if (points.blocks.size() != n)
       throw Error(path + ": " + std::to_string(points.blocks.size()) + " block ids for " + std::to_string(n) + " points");
     data.add("    <DataArray type=\"Int32\" Name=\"block\"", points.blocks);
+  }
+  const std::vector<double> radius(radii.begin(), radii.end());
+  if (!radius.empty()) {
+    if (radius.size() != n)
+      throw Error(path + ": " + std::to_string(radius.size()) + " radii for " + std::to_string(n) + " points");
+    data.add("    <DataArray type=\"Float64\" Name=\"radius\"", radius);
   }
   xml += data.take_xml() + "   </PointData>\n   <Points>\n";
   data.add("    <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\"", xyz);
