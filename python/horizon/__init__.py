@@ -286,8 +286,8 @@ def _periods(box, dims):
     return periods + [0.0] * (3 - len(periods))
 
 
-def search(points, horizon, *, backend="auto", metric="l2", half=False, sort_rows=True, threads=0, device=0,
-           devices=None, cells_per_horizon=1, box=None, references=None):
+def search(points, horizon=None, *, backend="auto", metric="l2", half=False, sort_rows=True, threads=0, device=0,
+           devices=None, cells_per_horizon=1, box=None, references=None, radii=None, radius_rule="gather"):
     """The neighbour list of `points` ((N, 2) or (N, 3) array-like, float64 or float32, any
     order): row i holds every j != i with distance(i, j) < horizon.
 
@@ -299,13 +299,20 @@ def search(points, horizon, *, backend="auto", metric="l2", half=False, sort_row
     box: periods (Lx, Ly[, Lz]) of a periodic box, 0 for an open axis (scipy's boxsize): points in
     [0, L), nearest-image distances, horizon < L/2;
     references: a second point set: row i then holds every reference j with distance < horizon
-    (scipy's query_ball_point; nothing is excluded as self) and the list's references is its size.
+    (scipy's query_ball_point; nothing is excluded as self) and the list's references is its size;
+    radii: instead of horizon, one radius per point (N floats, finite and > 0) and radius_rule says
+    which a pair is tested with: "gather" (d < r_i, scipy's query_ball_point with an array of r),
+    "scatter" (d < r_j), "max" or "min" (d < max/min(r_i, r_j); the only rules with half=True).
 
     A CUDA array (__cuda_array_interface__: CuPy, PyTorch; float64, C-contiguous) is searched
     where it lies, on its GPU and stream, and gives a DeviceNeighborList (backend, threads and
     device do not apply).
     """
+    if (horizon is None) == (radii is None):
+        raise ValueError("give either horizon or radii (one radius per point)")
     if hasattr(points, "__cuda_array_interface__"):
+        if radii is not None:
+            raise ValueError("radii= is not supported for GPU arrays yet: pass host arrays (backend='cuda' still runs on the GPU)")
         if box is not None or references is not None:
             raise ValueError("box= and references= are not supported for GPU arrays yet: pass host arrays")
         return _search_on_gpu(points, horizon, metric, half, sort_rows, cells_per_horizon)
@@ -313,9 +320,17 @@ def search(points, horizon, *, backend="auto", metric="l2", half=False, sort_row
     reference_array = None if references is None else _host_points(references, "references")
     if reference_array is not None and reference_array.shape[1] != array.shape[1]:
         raise ValueError(f"references have {reference_array.shape[1]} coordinates, points {array.shape[1]}")
-    owned = _horizon.search(array, float(horizon), metric, bool(half), bool(sort_rows), backend, int(threads),
-                            int(device), [int(d) for d in (devices or [])], int(cells_per_horizon),
-                            _periods(box, array.shape[1]), reference_array)
+    radius_array = None
+    if radii is not None:
+        if reference_array is not None:
+            raise ValueError("radii= with references=: not supported (one radius per point of one set)")
+        radius_array = np.ascontiguousarray(radii, dtype=np.float64)
+        if radius_array.shape != (len(array),):
+            raise ValueError(f"radii: expected shape ({len(array)},), one radius per point; got {radius_array.shape}")
+    owned = _horizon.search(array, 0.0 if horizon is None else float(horizon), metric, bool(half), bool(sort_rows),
+                            backend, int(threads), int(device), [int(d) for d in (devices or [])],
+                            int(cells_per_horizon), _periods(box, array.shape[1]), reference_array, radius_array,
+                            str(radius_rule))
     offsets, indices = owned.offsets, owned.indices
     offsets.flags.writeable = False
     indices.flags.writeable = False

@@ -19,6 +19,7 @@
 #include "horizon/cuda.hpp"
 #include "horizon/generate.hpp"
 #include "horizon/io.hpp"
+#include "horizon/radii.hpp"
 #include "horizon/search.hpp"
 #include "horizon/verlet_list.hpp"
 
@@ -73,7 +74,9 @@ horizon::PointView point_view(const py::array& points) {
 /// references: None, or the reference points (rows are then `points`, ids index references).
 OwnedList search(py::array points, double horizon, const std::string& metric, bool half, bool sort_rows,
                  const std::string& backend, int threads, int device, const std::vector<int>& devices,
-                 int cells_per_horizon, const std::array<double, 3>& box, std::optional<py::array> references) {
+                 int cells_per_horizon, const std::array<double, 3>& box, std::optional<py::array> references,
+                 std::optional<py::array_t<double, py::array::c_style | py::array::forcecast>> radii,
+                 const std::string& radius_rule) {
   const horizon::PointView view = point_view(points);
   horizon::SearchOptions options = options_of(horizon, metric, half, sort_rows, cells_per_horizon);
   options.backend = horizon::parse_backend(backend);
@@ -81,6 +84,12 @@ OwnedList search(py::array points, double horizon, const std::string& metric, bo
   options.device = device;
   options.devices = devices;
   options.box = box;
+  if (radii) {
+    const std::span<const double> values(radii->data(), static_cast<std::size_t>(radii->size()));
+    const horizon::RadiusRule rule = horizon::parse_radius_rule(radius_rule);
+    py::gil_scoped_release unlocked;
+    return OwnedList{horizon::search_with_radii(view, values, rule, options)};
+  }
   if (references) {
     const horizon::PointView reference_view = point_view(*references);
     py::gil_scoped_release unlocked;
@@ -223,7 +232,8 @@ PYBIND11_MODULE(_horizon, m) {
         py::arg("horizon"), py::arg("metric"), py::arg("half"), py::arg("sort_rows"), py::arg("cells_per_horizon"));
   m.def("search", &search, py::arg("points"), py::arg("horizon"), py::arg("metric"), py::arg("half"),
         py::arg("sort_rows"), py::arg("backend"), py::arg("threads"), py::arg("device"), py::arg("devices"),
-        py::arg("cells_per_horizon"), py::arg("box"), py::arg("references"));
+        py::arg("cells_per_horizon"), py::arg("box"), py::arg("references"), py::arg("radii"),
+        py::arg("radius_rule"));
   m.def("build_verlet", &build_verlet, py::arg("points"), py::arg("horizon"), py::arg("skin"), py::arg("metric"),
         py::arg("half"), py::arg("sort_rows"), py::arg("backend"), py::arg("threads"), py::arg("device"),
         py::arg("cells_per_horizon"));

@@ -198,6 +198,46 @@ def test_references_match_query_ball_point():
         nl.pairs()
 
 
+@pytest.mark.parametrize("rule", ["gather", "scatter", "max", "min"])
+@pytest.mark.parametrize("backend", ["serial", "openmp"])
+def test_radii_match_brute_force_and_query_ball_point(rule, backend):
+    from scipy.spatial import cKDTree
+
+    rng = np.random.default_rng(21)
+    points = rng.random((1500, 3)) * 10
+    radii = 0.4 * np.exp(rng.uniform(0, np.log(10), len(points)))  # spanning 10x
+    nl = horizon.search(points, radii=radii, radius_rule=rule, backend=backend)
+    d = points[:, None, :] - points[None, :, :]
+    acc = (d[..., 0] * d[..., 0] + d[..., 1] * d[..., 1]) + d[..., 2] * d[..., 2]
+    r = {"gather": radii[:, None], "scatter": radii[None, :], "max": np.maximum.outer(radii, radii),
+         "min": np.minimum.outer(radii, radii)}[rule]
+    near = acc < r * r
+    np.fill_diagonal(near, False)
+    assert all(np.array_equal(nl.row(i), np.flatnonzero(near[i])) for i in range(len(points)))
+    if rule == "gather":  # scipy's query_ball_point with an array of radii (ties have probability 0 here)
+        expected = cKDTree(points).query_ball_point(points, radii)
+        assert all(np.array_equal(nl.row(i), np.setdiff1d(row, [i])) for i, row in enumerate(expected))
+    if rule in ("max", "min"):
+        half = horizon.search(points, radii=radii, radius_rule=rule, half=True)
+        assert all(np.array_equal(half.row(i), np.flatnonzero(np.triu(near)[i])) for i in range(len(points)))
+
+
+def test_radii_errors():
+    points = np.zeros((5, 3))
+    with pytest.raises(ValueError, match="point 2 has radius -1"):
+        horizon.search(points, radii=[1, 1, -1, 1, 1])
+    with pytest.raises(ValueError, match="one radius per point"):
+        horizon.search(points, radii=[1, 1])
+    with pytest.raises(ValueError, match="either horizon or radii"):
+        horizon.search(points, 1.0, radii=[1] * 5)
+    with pytest.raises(ValueError, match="either horizon or radii"):
+        horizon.search(points)
+    with pytest.raises(ValueError, match="symmetric rule"):
+        horizon.search(points, radii=[1] * 5, half=True)
+    with pytest.raises(ValueError, match="unknown radius rule"):
+        horizon.search(points, radii=[1] * 5, radius_rule="mean")
+
+
 @pytest.mark.parametrize("bonds", [False, True])
 @pytest.mark.parametrize("dims", [2, 3])
 def test_save_vtk_reads_back_with_meshio(tmp_path, bonds, dims):
