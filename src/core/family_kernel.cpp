@@ -147,6 +147,10 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
         const auto [first, last] = index.points_of(c);
         if (std::none_of(order + first, order + last, in_batch)) continue;
       }
+    if (pass.row_radius) {  // per-point radii: only the cells holding a point with a row here
+      const auto [first, last] = index.points_of(c);
+      if (std::none_of(order + first, order + last, [&](point_id i) { return pass.row_radius[i] > 0; })) continue;
+    }
     const int row_count = index.stencil(c, rows.data());
     std::int64_t candidates = 0;
     for (int r = 0; r < row_count; ++r) candidates += rows[r].end - rows[r].begin;
@@ -170,16 +174,26 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
           __builtin_prefetch(pass.indices + (offsets[order[p + lookahead]] - base));
       if (static_cast<std::size_t>(self) >= queries) continue;  // no family: size stays 0
       if (Fill && !in_batch(self)) continue;
+      // Per-point radii: this row's own threshold, or no row.
+      auto row_threshold = threshold;
+      std::int64_t row_self_found = self_found;
+      if (pass.row_radius) {
+        const double radius = pass.row_radius[self];
+        if (!(radius > 0)) continue;
+        const double row_limit = metric_threshold(M, radius);
+        row_threshold = hn::Set(d, row_limit);
+        row_self_found = Ids == IdTest::none && row_limit > 0 ? 1 : 0;
+      }
       const auto px = hn::Set(d, x[p]), py = hn::Set(d, y[p]), pz = hn::Set(d, z[p]);
       const auto id = hn::Set(di, self);
       point_id* const row = row_buffer.data();  // empty when counting
       std::int64_t found = 0;
       if (sorted_stencil) {
-        found = TestCandidates<M, D, Ids, Fill>(px, py, pz, id, threshold, sorted.coords(0), sorted.coords(1),
+        found = TestCandidates<M, D, Ids, Fill>(px, py, pz, id, row_threshold, sorted.coords(0), sorted.coords(1),
                                                  sorted.coords(2), sorted.ids(), 0, sorted.size(), row);
       } else {
         for (int r = 0; r < row_count; ++r)
-          found += TestCandidates<M, D, Ids, Fill>(px, py, pz, id, threshold, x, y, z, order, rows[r].begin,
+          found += TestCandidates<M, D, Ids, Fill>(px, py, pz, id, row_threshold, x, y, z, order, rows[r].begin,
                                                     rows[r].end, Fill ? row + found : nullptr);
       }
       if constexpr (Fill) {
@@ -189,18 +203,18 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
           // row (rare: the stencil is sorted from 256 candidates) by insertion, then copied.
           // Insertion mispredicts a branch per move on rows in no order: AMD Zen 5, m = 1.5,
           // shuffled lattice 0.36-0.39 s to fill, 0.19-0.24 s with the network.
-          if (SortShortRowTo(row, found, self_found ? self : point_id{-1}, place, found - self_found)) continue;
+          if (SortShortRowTo(row, found, row_self_found ? self : point_id{-1}, place, found - row_self_found)) continue;
           insertion_sort(row, row + found);
         }
         std::int64_t before = found;  // the row goes to its place around `self`, if present
-        if (self_found) before = std::lower_bound(row, row + found, self) - row;
+        if (row_self_found) before = std::lower_bound(row, row + found, self) - row;
         if (before > 0)  // an empty row buffer may have no storage at all
           std::memcpy(place, row, static_cast<std::size_t>(before) * sizeof(point_id));
-        if (found > before + self_found)
-          std::memcpy(place + before, row + before + self_found,
-                      static_cast<std::size_t>(found - before - self_found) * sizeof(point_id));
+        if (found > before + row_self_found)
+          std::memcpy(place + before, row + before + row_self_found,
+                      static_cast<std::size_t>(found - before - row_self_found) * sizeof(point_id));
       } else {
-        offsets[self + 1] = found - self_found;
+        offsets[self + 1] = found - row_self_found;
       }
     }
   }

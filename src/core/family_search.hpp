@@ -29,6 +29,9 @@ struct FamilyPass {
   /// indices_base (a batch of a list built in parts).
   point_id rows_begin = 0, rows_end = std::numeric_limits<point_id>::max();
   std::int64_t indices_base = 0;
+  /// Per-point radii (radii.hpp): row i holds the points within row_radius[i] (<= the index's
+  /// horizon), and no row when it is 0. Null: every row within the horizon.
+  const double* row_radius = nullptr;
 };
 
 /// For each point i of the run: offsets[i + 1] = the size of its family. Compiled for each SIMD
@@ -42,8 +45,10 @@ void fill_families(const FamilyPass& pass, CellRun run);
 /// The instruction set the passes run with on this CPU (e.g. "AVX3", "AVX2").
 const char* simd_target();
 
-/// The neighbour list of the points of `index` on `threads` threads (1: serially).
-NeighborList search_families(const CellIndex& index, const SearchOptions& options, int threads);
+/// The neighbour list of the points of `index` on `threads` threads (1: serially); with
+/// `row_radius`, each row within its own radius (FamilyPass::row_radius).
+NeighborList search_families(const CellIndex& index, const SearchOptions& options, int threads,
+                             const double* row_radius = nullptr);
 
 /// The same list in batches of whole rows, for lists larger than memory: `begin(offsets)` once
 /// the count pass has given every row's offset (N + 1 of them), then `rows(first, last, ids)`

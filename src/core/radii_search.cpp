@@ -5,9 +5,14 @@
 #include <cmath>
 #include <vector>
 
+#include <omp.h>
+
+#include "../backends/backends.hpp"
+#include "family_search.hpp"
+#include "horizon/cell_index.hpp"
 #include "horizon/error.hpp"
+#include "horizon/grid.hpp"
 #include "horizon/stopwatch.hpp"
-#include "parallel_scan.hpp"
 
 namespace horizon {
 
@@ -73,20 +78,76 @@ struct Rows {
   Buffer<point_id> ids;
 };
 
-/// Row i: every j != i of `candidates` row i with d(i, j) < radii[i] (the gather rule), the
-/// candidates coming from one query search per radius class.
-template <Metric M>
-Rows gather(PointView points, std::span<const double> radii, const SearchOptions& options, SearchStats& stats) {
-  const std::size_t n = points.size();
+constexpr int most_classes = 31;
+
+/// The points of each radius class: class c holds the radii in (largest / 2^(c+1), largest / 2^c]
+/// (past 30 classes, the rest in the last), ids ascending.
+std::vector<std::vector<point_id>> radius_classes(std::span<const double> radii) {
   const double largest = *std::max_element(radii.begin(), radii.end());
-  // Class c holds the radii in (largest / 2^(c+1), largest / 2^c]; past 30 classes, one more.
-  constexpr int most_classes = 31;
   std::vector<std::vector<point_id>> members(most_classes);
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < radii.size(); ++i) {
     int c = 0;
     while (c + 1 < most_classes && radii[i] <= std::ldexp(largest, -(c + 1))) ++c;
     members[static_cast<std::size_t>(c)].push_back(static_cast<point_id>(i));
   }
+  return members;
+}
+
+/// The gather rows on the CPU: per class, a grid at the class's largest radius and the search's
+/// own passes, each row tested with its point's radius (FamilyPass::row_radius) so rows come
+/// out exact; the classes' rows (each row in one class) put together.
+Rows gather_on_cpu(PointView points, std::span<const double> radii, const SearchOptions& options, int threads,
+                   SearchStats& stats) {
+  const std::size_t n = points.size();
+  SearchOptions checked = options;
+  checked.horizon = *std::max_element(radii.begin(), radii.end());
+  detail::validate_search(points, checked);
+  std::vector<NeighborList> parts;
+  std::vector<double> row_radius(n);
+  for (const std::vector<point_id>& member : radius_classes(radii)) {
+    if (member.empty()) continue;
+    Stopwatch clock;
+    std::fill(row_radius.begin(), row_radius.end(), 0.0);
+    SearchOptions part = options;
+    part.horizon = 0;
+    part.half = false;
+    part.sort_rows = true;
+    for (const point_id i : member) {
+      row_radius[static_cast<std::size_t>(i)] = radii[static_cast<std::size_t>(i)];
+      part.horizon = std::max(part.horizon, radii[static_cast<std::size_t>(i)]);
+    }
+    const CellIndex index(points, Grid::fit(points, part.horizon, part.cells_per_horizon, threads), threads);
+    stats.grid_seconds += clock.lap();
+    parts.push_back(detail::search_families(index, part, threads, row_radius.data()));
+    stats.search_seconds += clock.lap();
+  }
+  Stopwatch clock;
+  Rows out;
+  out.offsets.assign(n + 1, 0);
+  for (const NeighborList& part : parts)
+    for (std::size_t i = 0; i < n; ++i) out.offsets[i + 1] += static_cast<std::int64_t>(part.row(i).size());
+  for (std::size_t i = 0; i < n; ++i) out.offsets[i + 1] += out.offsets[i];
+  out.ids.resize(static_cast<std::size_t>(out.offsets[n]));
+  const auto rows = static_cast<std::int64_t>(n);
+  for (const NeighborList& part : parts) {
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+    for (std::int64_t i = 0; i < rows; ++i) {
+      const auto row = part.row(static_cast<std::size_t>(i));
+      if (!row.empty()) std::copy(row.begin(), row.end(), out.ids.begin() + out.offsets[static_cast<std::size_t>(i)]);
+    }
+  }
+  stats.search_seconds += clock.lap();
+  stats.backend = threads > 1 || options.backend == Backend::openmp ? Backend::openmp : Backend::serial;
+  stats.threads = threads;
+  return out;
+}
+
+/// Row i: every j != i of `candidates` row i with d(i, j) < radii[i] (the gather rule), the
+/// candidates coming from one query search per radius class (any backend, periodic boxes).
+template <Metric M>
+Rows gather(PointView points, std::span<const double> radii, const SearchOptions& options, SearchStats& stats) {
+  const std::size_t n = points.size();
+  const std::vector<std::vector<point_id>> members = radius_classes(radii);
   Buffer<std::int64_t> count(n + 1, 0);
   std::vector<std::vector<point_id>> kept(most_classes);  // each class's rows, in member order
   const int threads = options.backend == Backend::serial ? 1 : options.threads > 0 ? options.threads : 0;
@@ -206,7 +267,15 @@ Rows combine(const Rows& a, const Rows& b, bool unite, bool half) {
 template <Metric M>
 Rows search_rows(PointView points, std::span<const double> radii, RadiusRule rule, const SearchOptions& options,
                  SearchStats& stats) {
-  Rows gathered = gather<M>(points, radii, options, stats);
+  // The CPU backends test each row with its own radius inside the search; the GPU and periodic
+  // boxes filter the rows of query searches.
+  const Backend backend = options.backend == Backend::automatic && !backend_available(Backend::cuda)
+                              ? Backend::openmp : options.backend;
+  const bool periodic = options.box[0] > 0 || options.box[1] > 0 || options.box[2] > 0;
+  const int threads = backend == Backend::serial ? 1 : options.threads > 0 ? options.threads : omp_get_max_threads();
+  Rows gathered = (backend == Backend::serial || backend == Backend::openmp) && !periodic
+                      ? gather_on_cpu(points, radii, options, threads, stats)
+                      : gather<M>(points, radii, options, stats);
   if (rule == RadiusRule::gather) return gathered;
   Stopwatch clock;
   Rows scattered = transpose(gathered);
