@@ -117,7 +117,7 @@ TEST_F(CliTest, BadInputExitsTwoWithOneClearMessage) {
       {"search good.csv --horizon nan", "horizon must be finite and > 0"},
       {"search good.csv --horizon 1 --out nowhere/list", "output directory 'nowhere' does not exist"},
       {"search good.csv --horizon 1 --cells-per-horizon 4", "cells-per-horizon"},
-      {"search good.csv", "--horizon is required"},
+      {"search good.csv", "--horizon D or --radii FILE is required"},
       {"search good.csv --horizon 1 --backend gpu", "backend"},
       {"verify good.csv missing --horizon 1", "missing.offsets.npy: cannot open"},
       {"search lattice:0 --horizon 1", "expected lattice:N"},
