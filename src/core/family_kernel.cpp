@@ -159,7 +159,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
     if (Fill && row_buffer.size() < static_cast<std::size_t>(candidates + row_padding))
       row_buffer.resize(static_cast<std::size_t>(candidates + row_padding));
     // Sorted rows: from a stencil sorted once per cell when it is large; small rows (m = 1.5:
-    // 80 candidates, 18 neighbours) sort faster one by one, by insertion.
+    // 80 candidates, 18 neighbours) sort faster one by one, in registers.
     const bool sorted_stencil = Fill && options.sort_rows && candidates >= 256;
     if (sorted_stencil) sorted.gather(index, rows.data(), row_count);
     const auto [first, last] = index.points_of(c);
