@@ -15,20 +15,9 @@
 #include "horizon/generate.hpp"
 #include "horizon/radii.hpp"
 #include "horizon/stopwatch.hpp"
+#include "median_seconds.hpp"
 
 using namespace horizon;
-
-template <class F>
-double median_seconds(int reps, F once) {
-  std::vector<double> t;
-  for (int r = 0; r < reps; ++r) {
-    Stopwatch clock;
-    once();
-    t.push_back(clock.lap());
-  }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
-}
 
 int main(int argc, char** argv) {
   CLI::App app{"horizon_radii_bench: per-point radii against one radius with as many entries, as CSV"};

@@ -12,20 +12,9 @@
 #include "horizon/generate.hpp"
 #include "horizon/stopwatch.hpp"
 #include "horizon/verlet_list.hpp"
+#include "median_seconds.hpp"
 
 using namespace horizon;
-
-template <class F>
-double median_seconds(int reps, F once) {
-  std::vector<double> t;
-  for (int r = 0; r < reps; ++r) {
-    Stopwatch clock;
-    once();
-    t.push_back(clock.lap());
-  }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
-}
 
 int main(int argc, char** argv) {
   CLI::App app{"horizon_verlet_bench: Verlet refresh against a fresh search, as CSV"};
