@@ -114,6 +114,12 @@ HWY_INLINE std::int64_t TestCandidates(V px, V py, V pz, VI self, V threshold, c
   return found;
 }
 
+/// SortShortRowTo compiled once per instruction set, not inlined into every pass variant (it
+/// tripled the object's size and its build time under the sanitizers).
+HWY_NOINLINE bool SortRowTo(const point_id* row, std::int64_t count, point_id drop, point_id* out, std::int64_t kept) {
+  return SortShortRowTo(row, count, drop, out, kept);
+}
+
 template <Metric M, int D, IdTest Ids, bool Fill>
 void VisitCells(const FamilyPass& pass, CellRun run) {
   const hn::ScalableTag<double> d;
@@ -203,7 +209,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
           // row (rare: the stencil is sorted from 256 candidates) by insertion, then copied.
           // Insertion mispredicts a branch per move on rows in no order: AMD Zen 5, m = 1.5,
           // shuffled lattice 0.36-0.39 s to fill, 0.19-0.24 s with the network.
-          if (SortShortRowTo(row, found, row_self_found ? self : point_id{-1}, place, found - row_self_found)) continue;
+          if (SortRowTo(row, found, row_self_found ? self : point_id{-1}, place, found - row_self_found)) continue;
           insertion_sort(row, row + found);
         }
         std::int64_t before = found;  // the row goes to its place around `self`, if present
