@@ -145,12 +145,12 @@ Rows gather_on_cpu(PointView points, std::span<const double> radii, const Search
 /// Row i: every j != i of `candidates` row i with d(i, j) < radii[i] (the gather rule), the
 /// candidates coming from one query search per radius class (any backend, periodic boxes).
 template <Metric M>
-Rows gather(PointView points, std::span<const double> radii, const SearchOptions& options, SearchStats& stats) {
+Rows gather(PointView points, std::span<const double> radii, const SearchOptions& options, int threads,
+            SearchStats& stats) {
   const std::size_t n = points.size();
   const std::vector<std::vector<point_id>> members = radius_classes(radii);
   Buffer<std::int64_t> count(n + 1, 0);
   std::vector<std::vector<point_id>> kept(most_classes);  // each class's rows, in member order
-  const int threads = options.backend == Backend::serial ? 1 : options.threads > 0 ? options.threads : 0;
   for (int c = 0; c < most_classes; ++c) {
     const std::vector<point_id>& member = members[static_cast<std::size_t>(c)];
     if (member.empty()) continue;
@@ -177,7 +177,7 @@ Rows gather(PointView points, std::span<const double> radii, const SearchOptions
     std::vector<char> keep(static_cast<std::size_t>(candidates.total()));
     const auto rows = static_cast<std::int64_t>(member.size());
     std::vector<std::int64_t> start(member.size() + 1, 0);
-#pragma omp parallel for schedule(dynamic, 256) num_threads(threads) if (threads != 1)
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads) if (threads > 1)
     for (std::int64_t q = 0; q < rows; ++q) {
       const auto i = static_cast<std::size_t>(member[static_cast<std::size_t>(q)]);
       const double threshold = metric_threshold(M, radii[i]);
@@ -194,7 +194,7 @@ Rows gather(PointView points, std::span<const double> radii, const SearchOptions
     for (std::size_t q = 0; q < member.size(); ++q) start[q + 1] += start[q];
     std::vector<point_id>& ids = kept[static_cast<std::size_t>(c)];
     ids.resize(static_cast<std::size_t>(start.back()));
-#pragma omp parallel for schedule(dynamic, 256) num_threads(threads) if (threads != 1)
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads) if (threads > 1)
     for (std::int64_t q = 0; q < rows; ++q) {
       std::int64_t out = start[static_cast<std::size_t>(q)];
       for (std::int64_t e = candidates.offsets()[q]; e < candidates.offsets()[q + 1]; ++e)
@@ -275,7 +275,7 @@ Rows search_rows(PointView points, std::span<const double> radii, RadiusRule rul
   const int threads = backend == Backend::serial ? 1 : options.threads > 0 ? options.threads : omp_get_max_threads();
   Rows gathered = (backend == Backend::serial || backend == Backend::openmp) && !periodic
                       ? gather_on_cpu(points, radii, options, threads, stats)
-                      : gather<M>(points, radii, options, stats);
+                      : gather<M>(points, radii, options, threads, stats);
   if (rule == RadiusRule::gather) return gathered;
   Stopwatch clock;
   Rows scattered = transpose(gathered);
