@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "horizon/generate.hpp"
@@ -28,6 +29,8 @@ int main(int argc, char** argv) {
   app.add_option("--span", span, "largest / smallest radius");
   app.add_option("--horizon", horizon, "geometric middle of the radii");
   app.add_option("--reps", reps, "repetitions (the median is reported)");
+  std::vector<std::string> rule_names{"gather", "scatter", "max", "min"};
+  app.add_option("--rules", rule_names, "rules to run")->delimiter(',');
   CLI11_PARSE(app, argc, argv);
 
   const PointSet points = clustered_cloud(count, 64, 1.0, 3, 2);  // horizon_bench's clustered cloud
@@ -39,7 +42,8 @@ int main(int argc, char** argv) {
   std::printf("# %d hardware threads; clustered cloud of %zu points (64 clusters, sigma 1), radii log-uniform "
               "over %gx around %g\n", omp_get_max_threads(), count, span, horizon);
   std::printf("rule,backend,threads,entries,single_radius,single_entries,radii_s,single_s,radii_over_single\n");
-  for (const RadiusRule rule : {RadiusRule::gather, RadiusRule::scatter, RadiusRule::max, RadiusRule::min}) {
+  for (const std::string& name : rule_names) {
+    const RadiusRule rule = parse_radius_rule(name);
     SearchOptions options;
     options.backend = Backend::openmp;
     const std::int64_t entries = search_with_radii(points.view(), radii, rule, options).total();
