@@ -54,6 +54,29 @@ inline std::vector<Dataset> datasets(int dims) {
   // Integer coordinates with an integer horizon: many pairs exactly on the horizon sphere (excluded)
   // and points exactly on cell borders.
   all.push_back({"integer_ties", integer_cloud(700, dims, dims == 3 ? 9 : 25, 11), 3.0});
+  // Partners at relative distances 1 +- 1e-5 ... 1e-9 and 1 from their centre, along an axis
+  // (as near the horizon in every metric) and in a random direction: pairs inside and outside
+  // the GPU's single-precision screen's band, which the double test must decide.
+  PointSet near{dims, {}};
+  std::mt19937_64 pick(21);
+  std::normal_distribution<double> normal;
+  const double offsets[] = {-1e-5, -1e-6, -1e-7, -3e-8, -1e-9, 0, 1e-9, 3e-8, 1e-7, 1e-6, 1e-5};
+  for (int centre = 0; centre < 64; ++centre) {
+    double c[3] = {0, 0, 0};
+    for (int a = 0, rest = centre; a < dims; ++a, rest /= dims == 3 ? 4 : 8) c[a] = 3.0 * (rest % (dims == 3 ? 4 : 8));
+    near.xyz.insert(near.xyz.end(), c, c + dims);
+    for (double t : offsets)
+      for (int random_direction = 0; random_direction < 2; ++random_direction) {
+        double v[3] = {0, 0, 0}, length = 0;
+        for (int a = 0; a < dims; ++a) {
+          v[a] = random_direction ? normal(pick) : (a == static_cast<int>(pick() % dims) ? 1.0 : 0.0);
+          length += v[a] * v[a];
+        }
+        if (length == 0) v[0] = length = 1;
+        for (int a = 0; a < dims; ++a) near.xyz.push_back(c[a] + (1 + t) * v[a] / std::sqrt(length));
+      }
+  }
+  all.push_back({"near_horizon", near, 1.0});
   // Every point three times: coincident points are each other's neighbours.
   PointSet triple{dims, {}};
   const PointSet base = random_cloud(150, dims, 5);
