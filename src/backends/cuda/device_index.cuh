@@ -24,10 +24,13 @@ struct Box {
 struct PointBox {
   const double* xyz;
   int dims;
+  // Axes spelled out: a loop to the run-time `dims` kept the box in local memory (and
+  // cell_keys' cell coordinates likewise: 266 us for 8e6 points on an H200, 4x the naive
+  // anchor's binning kernel).
   __host__ __device__ Box operator()(std::int64_t i) const {
-    Box b{{0, 0, 0}, {0, 0, 0}};
-    for (int a = 0; a < dims; ++a) b.lo[a] = b.hi[a] = xyz[i * dims + a];
-    return b;
+    const double* p = xyz + i * dims;
+    const double z = dims == 3 ? p[2] : 0.0;
+    return Box{{p[0], p[1], z}, {p[0], p[1], z}};
   }
 };
 
@@ -75,14 +78,14 @@ __global__ void cell_keys(const double* xyz, std::int64_t n, GridParams g, std::
                           std::int64_t* kx, std::int64_t* ky, std::int64_t* kz, point_id* ids) {
   const std::int64_t i = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
   if (i >= n) return;
-  std::int64_t c[3] = {0, 0, 0};
-  for (int a = 0; a < g.dims; ++a) c[a] = g.cell_of(xyz[i * g.dims + a], a);
+  const double* p = xyz + i * g.dims;
+  const std::int64_t cx = g.cell_of(p[0], 0), cy = g.cell_of(p[1], 1), cz = g.dims == 3 ? g.cell_of(p[2], 2) : 0;
   if (g.dense) {
-    linear[i] = g.linear(c[0], c[1], c[2]);
+    linear[i] = g.linear(cx, cy, cz);
   } else {
-    kx[i] = c[0];
-    ky[i] = c[1];
-    kz[i] = c[2];
+    kx[i] = cx;
+    ky[i] = cy;
+    kz[i] = cz;
   }
   ids[i] = static_cast<point_id>(i);
 }
