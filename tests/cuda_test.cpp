@@ -78,22 +78,28 @@ TEST(Cuda, FewLongRowsAmongShortOnesAreSorted) {
 
 TEST(Cuda, CellsWhoseStencilOutgrowsTheStageAreSorted) {
   REQUIRE_GPU();
-  // ~27 points a cell (lattice, m = 3.015: the per-cell fill), and a blob of 600 points that
-  // makes its neighbours' stencils too wide to stage: those rows are sorted after the fill.
-  for (int dims : {2, 3}) {
-    PointSet points = lattice(dims == 3 ? 30 : 150, dims, 10.0);
-    const double spacing = 10.0 / (dims == 3 ? 29 : 149);
-    PointSet blob = clustered_cloud(dims == 3 ? 600 : 1500, 1, spacing, dims, 9);
-    points.xyz.insert(points.xyz.end(), blob.xyz.begin(), blob.xyz.end());
-    for (bool half : {false, true})
-      for (std::int64_t batch : {std::int64_t{0}, std::int64_t{300000}}) {
-        SearchOptions cuda = options_for(3.015 * spacing, Backend::cuda);
-        SearchOptions serial = options_for(3.015 * spacing, Backend::serial);
-        cuda.half = serial.half = half;
-        cuda.gpu_batch_entries = batch;
-        EXPECT_EQ(search(points.view(), cuda), search(points.view(), serial)) << dims << " " << half << " " << batch;
-      }
-  }
+  // ~27 points a cell (lattice, m = 3.015: the per-cell fill), and a blob that makes its
+  // neighbours' stencils too wide for the 1024-candidate stage: the compact blob's fit the
+  // widest stage (a second launch); the spread one's hold over 4096 candidates but rows under
+  // 2048 (so still the per-cell fill): stored unstaged and sorted after the fill.
+  for (int dims : {2, 3})
+    for (const bool spread : {false, true}) {
+      PointSet points = lattice(dims == 3 ? 30 : 150, dims, 10.0);
+      const double spacing = 10.0 / (dims == 3 ? 29 : 149);
+      const std::size_t blob_points = spread ? (dims == 3 ? 8000 : 15000) : (dims == 3 ? 600 : 1500);
+      const double sigma = spread ? (dims == 3 ? 1.0 : 2.0) * 3.015 * spacing : spacing;
+      PointSet blob = clustered_cloud(blob_points, 1, sigma, dims, 9);
+      points.xyz.insert(points.xyz.end(), blob.xyz.begin(), blob.xyz.end());
+      for (bool half : {false, true})
+        for (std::int64_t batch : {std::int64_t{0}, std::int64_t{300000}}) {
+          SearchOptions cuda = options_for(3.015 * spacing, Backend::cuda);
+          SearchOptions serial = options_for(3.015 * spacing, Backend::serial);
+          cuda.half = serial.half = half;
+          cuda.gpu_batch_entries = batch;
+          EXPECT_EQ(search(points.view(), cuda), search(points.view(), serial))
+              << dims << " " << blob_points << " " << half << " " << batch;
+        }
+    }
 }
 
 TEST(Cuda, UnsortedRowsHoldTheSameFamilies) {

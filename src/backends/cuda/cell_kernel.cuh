@@ -21,7 +21,8 @@ namespace {
 
 constexpr int cell_block = 128, cell_warps = cell_block / 32;
 constexpr int most_runs = 49;  // (2k+1)^2 runs of a 3-D stencil, up to k = 3
-constexpr int wide_stage = 8;  // items per thread of the stage: 1024 candidates
+constexpr int wide_stage = 8;     // items per thread of the stage: 1024 candidates
+constexpr int widest_stage = 32;  // 4096 candidates (113 KB of shared memory), for dense cells
 
 template <int Items>
 struct Stage {
@@ -70,9 +71,14 @@ __device__ int sweep(double xi, double yi, double zi, point_id self, int count, 
   return found;
 }
 
+/// Fills the rows of the cells whose stencil holds more than `narrower` candidates (a launch
+/// with a smaller stage took the others); with `wider_follows`, those past this stage's
+/// capacity are left to a launch with a larger one, else swept from global memory.
 template <Metric M, int D, bool Half, bool Sorted, int Items>
-__global__ void __launch_bounds__(cell_block) cell_families(DeviceIndexView ix, PassArgs a) {
-  __shared__ Stage<Items> s;
+__global__ void __launch_bounds__(cell_block) cell_families(DeviceIndexView ix, PassArgs a, int narrower,
+                                                            bool wider_follows) {
+  extern __shared__ __align__(16) unsigned char stage_memory[];  // sized at launch: the widest exceeds 48 KB
+  Stage<Items>& s = *reinterpret_cast<Stage<Items>*>(stage_memory);
   const int warp = threadIdx.x / 32;
   const std::int64_t cells = *ix.cell_count;
   const int k = ix.grid.k, reach_z = D == 3 ? k : 0;
@@ -99,6 +105,10 @@ __global__ void __launch_bounds__(cell_block) cell_families(DeviceIndexView ix, 
     __syncthreads();
     const int stencil = s.run_prefix[s.runs];
     const bool staged = stencil <= Stage<Items>::capacity;
+    if (stencil <= narrower || (wider_follows && !staged)) {  // another launch's cell (same for the block)
+      __syncthreads();  // every thread has read the stencil before the next cell rewrites it
+      continue;
+    }
     if (staged) {
       if constexpr (Sorted) {
         point_id keys[Items], where[Items];
@@ -166,18 +176,22 @@ __global__ void __launch_bounds__(cell_block) cell_families(DeviceIndexView ix, 
   }
 }
 
-/// Launches the per-cell fill over every occupied cell, with as many blocks as the GPU holds
-/// at once (each takes cells in turn).
+/// Launches the per-cell fill over the occupied cells whose stencil holds more than
+/// `narrower` candidates (see cell_families), with as many blocks as the GPU holds at once
+/// (each takes cells in turn).
 template <bool Sorted, int Items, Metric M, int D, bool Half>
-void launch_cell_fill(const DeviceIndexView& ix, const PassArgs& args, cudaStream_t stream) {
+void launch_cell_fill(const DeviceIndexView& ix, const PassArgs& args, cudaStream_t stream, int narrower = 0,
+                      bool wider_follows = false) {
   const auto kernel = cell_families<M, D, Half, Sorted, Items>;
+  constexpr int bytes = sizeof(Stage<Items>);
   int device = 0, processors = 0, per_processor = 0;
   HORIZON_CUDA_CHECK(cudaGetDevice(&device));
+  HORIZON_CUDA_CHECK(cudaFuncSetAttribute(kernel, cudaFuncAttributeMaxDynamicSharedMemorySize, bytes));
   HORIZON_CUDA_CHECK(cudaDeviceGetAttribute(&processors, cudaDevAttrMultiProcessorCount, device));
-  HORIZON_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_processor, kernel, cell_block, 0));
+  HORIZON_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_processor, kernel, cell_block, bytes));
   const std::int64_t most = std::max<std::int64_t>(1, ix.n);
-  const auto blocks = static_cast<unsigned>(std::min<std::int64_t>(most, std::int64_t{processors} * per_processor));
-  kernel<<<blocks, cell_block, 0, stream>>>(ix, args);
+  const auto blocks = static_cast<unsigned>(std::min<std::int64_t>(most, std::int64_t{processors} * std::max(1, per_processor)));
+  kernel<<<blocks, cell_block, bytes, stream>>>(ix, args, narrower, wider_follows);
   check_launch("cell_families");
 }
 
