@@ -262,6 +262,14 @@ TEST_F(CliTest, RadiiGiveEachPointItsOwnHorizon) {
   expect_refused("search line.txt --radii word.txt", "word.txt:2: expected one radius (a number)");
   expect_refused("search line.txt --radii radii.txt --half", "a half list needs a symmetric rule (max or min)");
   expect_refused("search line.txt", "--horizon D or --radii FILE is required");
+  // With --queries, a radius per query (the gather rule): (0.2, 0) reaches 0 and 1, (5, 0) only
+  // point 5, at distance 0 (a query is nobody's "self").
+  write("queries.txt", "0.2 0 0\n5 0 0\n");
+  write("query_radii.txt", "1.5\n0.5\n");
+  EXPECT_OUTPUT(run("search line.txt --queries queries.txt --radii query_radii.txt --json"), "\"neighbors\":3");
+  expect_refused("search line.txt --queries queries.txt --radii radii.txt", "radii.txt: 10 radii for 2 queries");
+  expect_refused("search line.txt --queries queries.txt --radii query_radii.txt --radius-rule max",
+                 "--radii with --queries: only --radius-rule gather");
 }
 
 TEST_F(CliTest, MaxMemoryStreamsTheListToItsFilesOrRefusesIt) {

@@ -89,6 +89,34 @@ TEST_P(RadiiTest, PeriodicBoxMatchesBruteForce) {
   EXPECT_EQ(list.indices(), expected.indices());
 }
 
+TEST_P(RadiiTest, QueriesWithTheirOwnRadiiMatchBruteForce) {
+  const auto [backend, rule, metric, dims, half] = GetParam();
+  require(backend);
+  if (::testing::Test::IsSkipped() || ::testing::Test::HasFailure()) return;
+  if (rule != RadiusRule::gather || half) GTEST_SKIP() << "queries: one radius per query, full lists";
+  // 400 queries (a quarter of them on reference points: nothing is excluded as self) against
+  // each dataset, radii over 10x; and in a periodic box.
+  for (const Dataset& data : datasets(dims)) {
+    if (data.name == "huge_extent" || data.name == "dense" || data.points.size() == 0) continue;
+    PointSet queries = random_cloud(300, dims, 41);
+    queries.xyz.insert(queries.xyz.end(), data.points.xyz.begin(),
+                       data.points.xyz.begin() + static_cast<std::ptrdiff_t>(std::min<std::size_t>(100, data.points.size()) * dims));
+    const Dataset query_data{data.name, queries, data.horizon};
+    const std::vector<double> radii = radii_for(query_data, 0.3, 3.0, 6);
+    const SearchOptions options = options_for(data, metric, 1, false, backend);
+    const NeighborList list = search_with_radii(queries.view(), radii, data.points.view(), options);
+    const NeighborList expected = brute_force_with_radii(queries.view(), radii, data.points.view(), options);
+    ASSERT_EQ(list.offsets(), expected.offsets()) << data.name;
+    EXPECT_EQ(list.indices(), expected.indices()) << data.name;
+  }
+  const PointSet references = random_cloud(600, dims, 23), queries = random_cloud(200, dims, 29);
+  SearchOptions options = options_for(Dataset{"box", references, 0.8}, metric, 1, false, backend);
+  options.box = {10, 10, 0};
+  const std::vector<double> radii = radii_for(Dataset{"box", queries, 0.8}, 0.5, 3.0, 8);
+  EXPECT_EQ(search_with_radii(queries.view(), radii, references.view(), options),
+            brute_force_with_radii(queries.view(), radii, references.view(), options));
+}
+
 std::string case_name(const ::testing::TestParamInfo<Case>& info) {
   const auto [backend, rule, metric, dims, half] = info.param;
   return std::string(backend_name(backend)) + "_" + radius_rule_name(rule) + "_" + metric_name(metric) + "_" +
@@ -123,7 +151,19 @@ TEST(RadiiErrors, NameThePointOrTheRule) {
   radii.pop_back();
   EXPECT_EQ(message(RadiusRule::gather), "radii: 63 radii for 64 points");
   radii.push_back(1.0);
+  const PointSet queries = lattice(2);  // 8 queries
+  auto query_message = [&](const std::vector<double>& r, const SearchOptions& o) {
+    try {
+      search_with_radii(queries.view(), r, points.view(), o);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(query_message(std::vector<double>(7, 1.0), options), "radii: 7 radii for 8 queries");
+  EXPECT_EQ(query_message({1, 1, 1, 0, 1, 1, 1, 1}, options), "radii: query 3 has radius 0.000000 (each must be finite and > 0)");
   options.half = true;
+  EXPECT_NE(query_message(std::vector<double>(8, 1.0), options).find("half lists are about one point set"), std::string::npos);
   EXPECT_NE(message(RadiusRule::scatter).find("half list needs a symmetric rule"), std::string::npos);
   EXPECT_EQ(message(RadiusRule::min), "no error");
   options.half = false;

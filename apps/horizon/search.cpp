@@ -32,13 +32,16 @@ void run_search(const SearchArgs& args) {
   if (!args.blocks.empty()) references.blocks = read_blocks(args.blocks, references.size());
   const PointSet queries = args.queries.empty() ? PointSet{} : load_input(args.queries);
   const PointSet& points = args.queries.empty() ? references : queries;  // the rows
-  const std::vector<double> radii = args.radii.empty() ? std::vector<double>{} : read_radii(args.radii, references.size());
+  // one radius per row: per query with --queries
+  const std::vector<double> radii = args.radii.empty() ? std::vector<double>{} : read_radii(args.radii, points.size(), args.queries.empty() ? "points" : "queries");
   const double read_seconds = clock.lap();
 
   SearchOptions options = search_options(args);
   const RadiusRule radius_rule = parse_radius_rule(args.radius_rule);
   if (!radii.empty()) {
-    if (!args.queries.empty()) throw Error("--radii with --queries: not supported (one radius per input point)");
+    if (!args.queries.empty() && radius_rule != RadiusRule::gather)
+      throw Error(std::string("--radii with --queries: only --radius-rule gather (each query's own radius), not ") +
+                  radius_rule_name(radius_rule));
     for (const double r : radii) options.horizon = std::max(options.horizon, r);  // the filters' reach
   }
   const std::vector<BondFilter> filters =
@@ -56,8 +59,11 @@ void run_search(const SearchArgs& args) {
   std::string written;
   std::int64_t streamed = -1;  // entries written in batches, when the list did not fit in memory
   try {
-    list = !radii.empty()           ? search_with_radii(references.view(), radii, radius_rule, options, &stats)
-           : args.queries.empty() ? search(references.view(), options, &stats)
+    if (!radii.empty())
+      list = args.queries.empty() ? search_with_radii(references.view(), radii, radius_rule, options, &stats)
+                                  : search_with_radii(queries.view(), radii, references.view(), options, &stats);
+    else
+      list = args.queries.empty() ? search(references.view(), options, &stats)
                                   : search(queries.view(), references.view(), options, &stats);
   } catch (const ListTooLarge& too_large) {
     const bool periodic = options.box[0] > 0 || options.box[1] > 0 || options.box[2] > 0;
@@ -280,7 +286,7 @@ void add_search(CLI::App& app) {
       ->required();
   CLI::Option* horizon = cmd->add_option("--horizon", args->horizon, "pairs closer than this are neighbours");
   CLI::Option* radii = cmd->add_option("--radii", args->radii,
-                                       "a radius per point instead of --horizon (.npy float, or text one per line)");
+                                       "a radius per point (per query with --queries) instead of --horizon (.npy float, or text one per line)");
   horizon->excludes(radii);
   radii->excludes(horizon);
   cmd->add_option("--radius-rule", args->radius_rule,

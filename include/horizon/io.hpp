@@ -27,7 +27,7 @@ std::vector<std::int32_t> read_blocks(const std::string& path, std::size_t point
 /// A radius per point (radii.hpp): `.npy` of float64/float32 (N), or text with one number per
 /// line. Error naming the file (and line) unless there are `points` numbers; their values are
 /// checked by the search (naming the point).
-std::vector<double> read_radii(const std::string& path, std::size_t points);
+std::vector<double> read_radii(const std::string& path, std::size_t points, const std::string& rows = "points");
 
 /// Points to `.npy` (N x dims float64) or, for any other extension, text `x y [z]` lines.
 void write_points(const std::string& path, const PointSet& points);

@@ -33,8 +33,17 @@ const char* radius_rule_name(RadiusRule rule);
 NeighborList search_with_radii(PointView points, std::span<const double> radii, RadiusRule rule,
                                const SearchOptions& options, SearchStats* stats = nullptr);
 
-/// The brute-force answer (O(N^2)): every pair tested with the radius `rule` gives it.
+/// The families of `queries` among `references`, each query with its own radius (`radii`, one
+/// per query): row q holds every reference r with d(q, r) < radii[q] (the gather rule; nothing
+/// is excluded as "self"); ids index `references`. Full lists only.
+NeighborList search_with_radii(PointView queries, std::span<const double> radii, PointView references,
+                               const SearchOptions& options, SearchStats* stats = nullptr);
+
+/// The brute-force answers (O(N^2)): every pair tested with the radius `rule` gives it; and
+/// every query against every reference with the query's radius.
 NeighborList brute_force_with_radii(PointView points, std::span<const double> radii, RadiusRule rule,
+                                    const SearchOptions& options);
+NeighborList brute_force_with_radii(PointView queries, std::span<const double> radii, PointView references,
                                     const SearchOptions& options);
 
 }  // namespace horizon

@@ -302,7 +302,8 @@ def search(points, horizon=None, *, backend="auto", metric="l2", half=False, sor
     (scipy's query_ball_point; nothing is excluded as self) and the list's references is its size;
     radii: instead of horizon, one radius per point (N floats, finite and > 0) and radius_rule says
     which a pair is tested with: "gather" (d < r_i, scipy's query_ball_point with an array of r),
-    "scatter" (d < r_j), "max" or "min" (d < max/min(r_i, r_j); the only rules with half=True).
+    "scatter" (d < r_j), "max" or "min" (d < max/min(r_i, r_j); the only rules with half=True);
+    with references, one radius per query and the gather rule only.
 
     A CUDA array (__cuda_array_interface__: CuPy, PyTorch; float64, C-contiguous) is searched
     where it lies, on its GPU and stream, and gives a DeviceNeighborList (backend, threads and
@@ -322,8 +323,6 @@ def search(points, horizon=None, *, backend="auto", metric="l2", half=False, sor
         raise ValueError(f"references have {reference_array.shape[1]} coordinates, points {array.shape[1]}")
     radius_array = None
     if radii is not None:
-        if reference_array is not None:
-            raise ValueError("radii= with references=: not supported (one radius per point of one set)")
         radius_array = np.ascontiguousarray(radii, dtype=np.float64)
         if radius_array.shape != (len(array),):
             raise ValueError(f"radii: expected shape ({len(array)},), one radius per point; got {radius_array.shape}")

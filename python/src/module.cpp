@@ -87,6 +87,14 @@ OwnedList search(py::array points, double horizon, const std::string& metric, bo
   if (radii) {
     const std::span<const double> values(radii->data(), static_cast<std::size_t>(radii->size()));
     const horizon::RadiusRule rule = horizon::parse_radius_rule(radius_rule);
+    if (references) {  // one radius per query: the gather rule only
+      if (rule != horizon::RadiusRule::gather)
+        throw horizon::Error(std::string("radii with references: only radius_rule='gather' (each query's own radius), not ") +
+                             horizon::radius_rule_name(rule));
+      const horizon::PointView reference_view = point_view(*references);
+      py::gil_scoped_release unlocked;
+      return OwnedList{horizon::search_with_radii(view, values, reference_view, options)};
+    }
     py::gil_scoped_release unlocked;
     return OwnedList{horizon::search_with_radii(view, values, rule, options)};
   }

@@ -93,4 +93,18 @@ NeighborList brute_force_with_radii(PointView points, std::span<const double> ra
   return NeighborList(std::move(offsets), std::move(indices), options.half);
 }
 
+NeighborList brute_force_with_radii(PointView queries, std::span<const double> radii, PointView references,
+                                    const SearchOptions& options) {
+  Buffer<std::int64_t> offsets{0};
+  Buffer<point_id> indices;
+  SearchOptions pair = options;
+  for (std::size_t q = 0; q < queries.size(); ++q) {
+    pair.horizon = radii[q];
+    for (std::size_t r = 0; r < references.size(); ++r)
+      if (neighbours(queries, q, references, r, pair)) indices.push_back(static_cast<point_id>(r));
+    offsets.push_back(static_cast<std::int64_t>(indices.size()));
+  }
+  return NeighborList(std::move(offsets), std::move(indices), false);
+}
+
 }  // namespace horizon

@@ -36,12 +36,14 @@ const char* radius_rule_name(RadiusRule rule) {
 
 namespace {
 
-void validate_radii(PointView points, std::span<const double> radii, RadiusRule rule, const SearchOptions& options) {
+/// `one` and `many` name what carries the radii: point(s) or quer(y|ies).
+void validate_radii(PointView points, std::span<const double> radii, RadiusRule rule, const SearchOptions& options,
+                    const std::string& one = "point", const std::string& many = "points") {
   if (radii.size() != points.size())
-    throw Error("radii: " + std::to_string(radii.size()) + " radii for " + std::to_string(points.size()) + " points");
+    throw Error("radii: " + std::to_string(radii.size()) + " radii for " + std::to_string(points.size()) + " " + many);
   for (std::size_t i = 0; i < radii.size(); ++i)
     if (!(std::isfinite(radii[i]) && radii[i] > 0))
-      throw Error("radii: point " + std::to_string(i) + " has radius " + std::to_string(radii[i]) +
+      throw Error("radii: " + one + " " + std::to_string(i) + " has radius " + std::to_string(radii[i]) +
                   " (each must be finite and > 0)");
   if (options.half && (rule == RadiusRule::gather || rule == RadiusRule::scatter))
     throw Error(std::string("radii: a half list needs a symmetric rule (max or min); with ") + radius_rule_name(rule) +
@@ -58,10 +60,10 @@ void validate_radii(PointView points, std::span<const double> radii, RadiusRule 
 /// over the periodic images of j (x_j, x_j + L, x_j - L, rounded, as the search tests them).
 /// The accumulation grows with each |difference|, so this is the nearest image's.
 template <Metric M>
-double accumulated(PointView points, std::size_t i, std::size_t j, const std::array<double, 3>& box) {
+double accumulated(PointView rows, std::size_t i, PointView ids, std::size_t j, const std::array<double, 3>& box) {
   double d[3] = {0, 0, 0};
-  for (int a = 0; a < points.dims(); ++a) {
-    const double xi = points(i, a), xj = points(j, a);
+  for (int a = 0; a < rows.dims(); ++a) {
+    const double xi = rows(i, a), xj = ids(j, a);
     double nearest = std::fabs(xi - xj);
     if (box[static_cast<std::size_t>(a)] > 0) {
       const double period = box[static_cast<std::size_t>(a)];
@@ -142,23 +144,24 @@ Rows gather_on_cpu(PointView points, std::span<const double> radii, const Search
   return out;
 }
 
-/// Row i: every j != i of `candidates` row i with d(i, j) < radii[i] (the gather rule), the
-/// candidates coming from one query search per radius class (any backend, periodic boxes).
+/// Row i (a point of `row_points`): every j of `id_points` with d(i, j) < radii[i] (the gather rule), j != i
+/// when both are the same point set; the candidates come from one query search per radius
+/// class (any backend, periodic boxes).
 template <Metric M>
-Rows gather(PointView points, std::span<const double> radii, const SearchOptions& options, int threads,
-            SearchStats& stats) {
-  const std::size_t n = points.size();
+Rows gather(PointView row_points, std::span<const double> radii, PointView id_points, bool same_set, const SearchOptions& options,
+            int threads, SearchStats& stats) {
+  const std::size_t n = row_points.size();
   const std::vector<std::vector<point_id>> members = radius_classes(radii);
   Buffer<std::int64_t> count(n + 1, 0);
   std::vector<std::vector<point_id>> kept(most_classes);  // each class's rows, in member order
   for (int c = 0; c < most_classes; ++c) {
     const std::vector<point_id>& member = members[static_cast<std::size_t>(c)];
     if (member.empty()) continue;
-    PointSet queries{points.dims(), {}};
-    queries.xyz.reserve(member.size() * static_cast<std::size_t>(points.dims()));
+    PointSet class_queries{row_points.dims(), {}};
+    class_queries.xyz.reserve(member.size() * static_cast<std::size_t>(row_points.dims()));
     double reach = 0;
     for (const point_id i : member) {
-      for (int a = 0; a < points.dims(); ++a) queries.xyz.push_back(points(static_cast<std::size_t>(i), a));
+      for (int a = 0; a < row_points.dims(); ++a) class_queries.xyz.push_back(row_points(static_cast<std::size_t>(i), a));
       reach = std::max(reach, radii[static_cast<std::size_t>(i)]);
     }
     SearchOptions class_options = options;
@@ -166,7 +169,7 @@ Rows gather(PointView points, std::span<const double> radii, const SearchOptions
     class_options.half = false;
     class_options.sort_rows = true;
     SearchStats class_stats;
-    const NeighborList candidates = search(queries.view(), points, class_options, &class_stats);
+    const NeighborList candidates = search(class_queries.view(), id_points, class_options, &class_stats);
     stats.grid_seconds += class_stats.grid_seconds;
     stats.search_seconds += class_stats.search_seconds;
     stats.backend = class_stats.backend;
@@ -184,7 +187,7 @@ Rows gather(PointView points, std::span<const double> radii, const SearchOptions
       std::int64_t found = 0;
       for (std::int64_t e = candidates.offsets()[q]; e < candidates.offsets()[q + 1]; ++e) {
         const auto j = static_cast<std::size_t>(candidates.indices()[e]);
-        const bool near = j != i && accumulated<M>(points, i, j, options.box) < threshold;
+        const bool near = (!same_set || j != i) && accumulated<M>(row_points, i, id_points, j, options.box) < threshold;
         keep[static_cast<std::size_t>(e)] = near;
         found += near;
       }
@@ -264,18 +267,26 @@ Rows combine(const Rows& a, const Rows& b, bool unite, bool half) {
   return out;
 }
 
+Backend effective_backend(const SearchOptions& options) {
+  return options.backend == Backend::automatic && !backend_available(Backend::cuda) ? Backend::openmp : options.backend;
+}
+
+/// Threads of the filtering steps: one for the serial backend, else the search's.
+int filter_threads(const SearchOptions& options) {
+  return effective_backend(options) == Backend::serial ? 1 : options.threads > 0 ? options.threads : omp_get_max_threads();
+}
+
 template <Metric M>
 Rows search_rows(PointView points, std::span<const double> radii, RadiusRule rule, const SearchOptions& options,
                  SearchStats& stats) {
   // The CPU backends test each row with its own radius inside the search; the GPU and periodic
   // boxes filter the rows of query searches.
-  const Backend backend = options.backend == Backend::automatic && !backend_available(Backend::cuda)
-                              ? Backend::openmp : options.backend;
+  const Backend backend = effective_backend(options);
   const bool periodic = options.box[0] > 0 || options.box[1] > 0 || options.box[2] > 0;
-  const int threads = backend == Backend::serial ? 1 : options.threads > 0 ? options.threads : omp_get_max_threads();
+  const int threads = filter_threads(options);
   Rows gathered = (backend == Backend::serial || backend == Backend::openmp) && !periodic
                       ? gather_on_cpu(points, radii, options, threads, stats)
-                      : gather<M>(points, radii, options, threads, stats);
+                      : gather<M>(points, radii, points, true, options, threads, stats);
   if (rule == RadiusRule::gather) return gathered;
   Stopwatch clock;
   Rows scattered = transpose(gathered);
@@ -285,6 +296,24 @@ Rows search_rows(PointView points, std::span<const double> radii, RadiusRule rul
 }
 
 }  // namespace
+
+NeighborList search_with_radii(PointView queries, std::span<const double> radii, PointView references,
+                               const SearchOptions& options, SearchStats* stats) {
+  if (options.half) throw Error("radii: half lists are about one point set, not queries against references");
+  validate_radii(queries, radii, RadiusRule::gather, options, "query", "queries");
+  SearchStats local;
+  SearchStats& out = stats ? *stats : local;
+  out = SearchStats{};
+  if (queries.empty()) return NeighborList(Buffer<std::int64_t>{0}, Buffer<point_id>{}, false);
+  const int threads = filter_threads(options);
+  Rows rows;
+  switch (options.metric) {
+    case Metric::euclidean: rows = gather<Metric::euclidean>(queries, radii, references, false, options, threads, out); break;
+    case Metric::manhattan: rows = gather<Metric::manhattan>(queries, radii, references, false, options, threads, out); break;
+    case Metric::chebyshev: rows = gather<Metric::chebyshev>(queries, radii, references, false, options, threads, out); break;
+  }
+  return NeighborList(std::move(rows.offsets), std::move(rows.ids), false);
+}
 
 NeighborList search_with_radii(PointView points, std::span<const double> radii, RadiusRule rule,
                                const SearchOptions& options, SearchStats* stats) {

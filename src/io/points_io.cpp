@@ -146,7 +146,7 @@ std::vector<std::int32_t> read_blocks(const std::string& path, std::size_t point
   return blocks;
 }
 
-std::vector<double> read_radii(const std::string& path, std::size_t points) {
+std::vector<double> read_radii(const std::string& path, std::size_t points, const std::string& rows) {
   std::vector<double> radii;
   if (ends_with(path, ".npy")) {
     const detail::NpyArray array = detail::read_npy(path);
@@ -171,7 +171,7 @@ std::vector<double> read_radii(const std::string& path, std::size_t points) {
     });
   }
   if (radii.size() != points)
-    throw Error(path + ": " + std::to_string(radii.size()) + " radii for " + std::to_string(points) + " points");
+    throw Error(path + ": " + std::to_string(radii.size()) + " radii for " + std::to_string(points) + " " + rows);
   return radii;
 }
 

@@ -222,6 +222,22 @@ def test_radii_match_brute_force_and_query_ball_point(rule, backend):
         assert all(np.array_equal(half.row(i), np.flatnonzero(np.triu(near)[i])) for i in range(len(points)))
 
 
+@pytest.mark.parametrize("backend", ["serial", "openmp"])
+def test_radii_of_queries_match_query_ball_point(backend):
+    from scipy.spatial import cKDTree
+
+    rng = np.random.default_rng(22)
+    references = rng.random((2000, 3)) * 10
+    queries = np.vstack([rng.random((500, 3)) * 10, references[:100]])  # some queries on references
+    radii = 0.3 * np.exp(rng.uniform(0, np.log(10), len(queries)))
+    nl = horizon.search(queries, radii=radii, references=references, backend=backend)
+    assert nl.references == len(references)
+    expected = cKDTree(references).query_ball_point(queries, radii)
+    assert all(np.array_equal(nl.row(i), np.sort(row)) for i, row in enumerate(expected))
+    with pytest.raises(ValueError, match="only radius_rule='gather'"):
+        horizon.search(queries, radii=radii, references=references, radius_rule="max")
+
+
 def test_radii_errors():
     points = np.zeros((5, 3))
     with pytest.raises(ValueError, match="point 2 has radius -1"):
