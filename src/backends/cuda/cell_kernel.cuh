@@ -5,9 +5,11 @@
 // id when rows are to be sorted; then a warp per point of the cell sweeps the staged
 // candidates 32 at a time and stores each sweep's hits as one coalesced piece of the row.
 // Every point of the cell tests the candidates in id order, so rows come out sorted without
-// a sort per row, and the cell's points share one staging and one sort. A stencil larger
-// than the stage (a dense spot of a clustered cloud) is swept from global memory instead,
-// leaving its rows unsorted: their ids go to a.spilled, to be sorted after the fill.
+// a sort per row, and the cell's points share one staging and one sort. Stages hold 256,
+// 1024 or 4096 candidates; the dense cells of a clustered cloud, past 1024, take a second
+// launch with the 113 KB stage, so the other cells keep their blocks per SM. A stencil larger
+// than every stage is swept from global memory instead, leaving its rows unsorted: their ids
+// go to a.spilled, to be sorted after the fill.
 // Measured against the per-point fill + row sort (Nsight Compute, H100, lattice n = 200,
 // m = 3.015): 14.6 ms against 25.9 ms (warp per point, fused warp sort). For rows of up to
 // 64, or cells of fewer than 8 points, the per-point kernels win (point_kernel.cuh).
