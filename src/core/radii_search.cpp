@@ -144,12 +144,12 @@ Rows gather_on_cpu(PointView points, std::span<const double> radii, const Search
   return out;
 }
 
-/// Row i (a point of `row_points`): every j of `id_points` with d(i, j) < radii[i] (the gather rule), j != i
-/// when both are the same point set; the candidates come from one query search per radius
-/// class (any backend, periodic boxes).
+/// Row i (a point of `row_points`): every j of `id_points` with d(i, j) < radii[i] (the gather
+/// rule), j != i when both are the same point set; the candidates come from one query search
+/// per radius class (any backend, periodic boxes).
 template <Metric M>
-Rows gather(PointView row_points, std::span<const double> radii, PointView id_points, bool same_set, const SearchOptions& options,
-            int threads, SearchStats& stats) {
+Rows gather(PointView row_points, std::span<const double> radii, PointView id_points, bool same_set,
+            const SearchOptions& options, int threads, SearchStats& stats) {
   const std::size_t n = row_points.size();
   const std::vector<std::vector<point_id>> members = radius_classes(radii);
   Buffer<std::int64_t> count(n + 1, 0);
