@@ -178,6 +178,15 @@ __global__ void __launch_bounds__(cell_block) cell_families(DeviceIndexView ix, 
   }
 }
 
+/// Whether this GPU grants a block the widest stage's shared memory (sm_80 on: 163-227 KB; a
+/// V100 has 96 KB, a T4 64 KB: there dense cells keep the unstaged sweep and the sort after).
+bool widest_stage_fits() {
+  int device = 0, most = 0;
+  HORIZON_CUDA_CHECK(cudaGetDevice(&device));
+  HORIZON_CUDA_CHECK(cudaDeviceGetAttribute(&most, cudaDevAttrMaxSharedMemoryPerBlockOptin, device));
+  return static_cast<std::size_t>(most) >= sizeof(Stage<widest_stage>);
+}
+
 /// Launches the per-cell fill over the occupied cells whose stencil holds more than
 /// `narrower` candidates (see cell_families), with as many blocks as the GPU holds at once
 /// (each takes cells in turn).

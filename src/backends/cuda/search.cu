@@ -180,10 +180,13 @@ point_id* fill_rows(const DeviceIndex& index, const SearchOptions& options, cons
   const bool sorted = options.sort_rows;
   const unsigned blocks = blocks_for(static_cast<std::size_t>(ix.n));
   const Fill kind = fill_kind(counts);
+  const bool use_widest_stage =
+      kind == Fill::per_cell && sorted && counts.widest > Stage<wide_stage>::capacity && widest_stage_fits();
+  const int staged_up_to = use_widest_stage ? Stage<widest_stage>::capacity : Stage<wide_stage>::capacity;
   // The rows a fill stores unsorted: their number, then their ids (the short-row fill's long
-  // rows; the per-cell fill's rows of cells whose stencil outgrows the stage).
+  // rows; the per-cell fill's rows of cells whose stencil outgrows every stage).
   const bool spills = sorted && ((kind == Fill::short_rows && counts.long_rows > 0) ||
-                                 (kind == Fill::per_cell && counts.widest > Stage<widest_stage>::capacity));
+                                 (kind == Fill::per_cell && counts.widest > staged_up_to));
   const std::int64_t most_spilled = kind == Fill::short_rows ? counts.long_rows : last - first;
   DeviceArray<point_id> spilled(spills ? static_cast<std::size_t>(most_spilled) + 1 : 0, meter);
   if (spills) {
@@ -200,8 +203,7 @@ point_id* fill_rows(const DeviceIndex& index, const SearchOptions& options, cons
       case Fill::per_cell:
         if (!sorted) return launch_cell_fill<false, wide_stage, HORIZON_SHAPE(m, d, h)>(ix, args, stream);
         if (counts.widest <= Stage<2>::capacity) return launch_cell_fill<true, 2, HORIZON_SHAPE(m, d, h)>(ix, args, stream);
-        if (counts.widest <= Stage<wide_stage>::capacity)
-          return launch_cell_fill<true, wide_stage, HORIZON_SHAPE(m, d, h)>(ix, args, stream);
+        if (!use_widest_stage) return launch_cell_fill<true, wide_stage, HORIZON_SHAPE(m, d, h)>(ix, args, stream);
         // Dense cells (a clustered cloud's centres) staged too, in a second launch with a stage
         // of 4096 whose 113 KB would leave the other cells a quarter of the blocks per SM.
         launch_cell_fill<true, wide_stage, HORIZON_SHAPE(m, d, h)>(ix, args, stream, 0, true);
