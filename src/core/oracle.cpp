@@ -39,6 +39,21 @@ bool neighbours(PointView a, std::size_t i, PointView b, std::size_t j, const Se
   return false;
 }
 
+/// Row q: every reference within horizon_of(q) of query q (nothing excluded as self).
+template <typename Horizon>
+NeighborList query_rows(PointView queries, PointView references, const SearchOptions& options, Horizon horizon_of) {
+  Buffer<std::int64_t> offsets{0};
+  Buffer<point_id> indices;
+  SearchOptions pair = options;
+  for (std::size_t q = 0; q < queries.size(); ++q) {
+    pair.horizon = horizon_of(q);
+    for (std::size_t r = 0; r < references.size(); ++r)
+      if (neighbours(queries, q, references, r, pair)) indices.push_back(static_cast<point_id>(r));
+    offsets.push_back(static_cast<std::int64_t>(indices.size()));
+  }
+  return NeighborList(std::move(offsets), std::move(indices), false);
+}
+
 }  // namespace
 
 std::vector<point_id> brute_force_family(PointView points, std::size_t i,
@@ -63,14 +78,7 @@ NeighborList brute_force(PointView points, const SearchOptions& options) {
 }
 
 NeighborList brute_force(PointView queries, PointView references, const SearchOptions& options) {
-  Buffer<std::int64_t> offsets{0};
-  Buffer<point_id> indices;
-  for (std::size_t q = 0; q < queries.size(); ++q) {
-    for (std::size_t r = 0; r < references.size(); ++r)
-      if (neighbours(queries, q, references, r, options)) indices.push_back(static_cast<point_id>(r));
-    offsets.push_back(static_cast<std::int64_t>(indices.size()));
-  }
-  return NeighborList(std::move(offsets), std::move(indices), false);
+  return query_rows(queries, references, options, [&](std::size_t) { return options.horizon; });
 }
 
 NeighborList brute_force_with_radii(PointView points, std::span<const double> radii, RadiusRule rule,
@@ -95,16 +103,7 @@ NeighborList brute_force_with_radii(PointView points, std::span<const double> ra
 
 NeighborList brute_force_with_radii(PointView queries, std::span<const double> radii, PointView references,
                                     const SearchOptions& options) {
-  Buffer<std::int64_t> offsets{0};
-  Buffer<point_id> indices;
-  SearchOptions pair = options;
-  for (std::size_t q = 0; q < queries.size(); ++q) {
-    pair.horizon = radii[q];
-    for (std::size_t r = 0; r < references.size(); ++r)
-      if (neighbours(queries, q, references, r, pair)) indices.push_back(static_cast<point_id>(r));
-    offsets.push_back(static_cast<std::int64_t>(indices.size()));
-  }
-  return NeighborList(std::move(offsets), std::move(indices), false);
+  return query_rows(queries, references, options, [&](std::size_t q) { return radii[q]; });
 }
 
 }  // namespace horizon
