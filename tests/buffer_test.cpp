@@ -37,7 +37,7 @@ TEST(Buffer, ReusesLargeFreedBlocksForListsOfAboutTheirSize) {
   {
     Buffer<std::int64_t> offsets(10 * mib);  // a search's two arrays are both kept
     Buffer<std::int32_t> indices(200 * mib / sizeof(std::int32_t));
-    Buffer<std::int32_t> tiny(mib);  // below 64 MB: never kept
+    Buffer<std::int32_t> tiny(mib);  // below 32 MB: never kept
   }
   EXPECT_GE(detail::cached_buffer_bytes(), 280 * mib);
   EXPECT_LT(detail::cached_buffer_bytes(), 320 * mib);

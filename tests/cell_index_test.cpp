@@ -40,12 +40,12 @@ TEST(CellIndex, AnyThreadCountGivesTheSerialSortStableById) {
 TEST(RadixSort, SortsByTheHighWordKeepingTheLowWordsOrder) {
   // 23 cell bits (three passes of 8), many equal cells, on thread counts that split unevenly.
   std::mt19937_64 rng(5);
-  Buffer<std::uint64_t> keys(100003);
+  ScratchBuffer<std::uint64_t> keys(100003);
   for (std::size_t i = 0; i < keys.size(); ++i) keys[i] = (rng() % (rng() % 2 ? 7 : 1u << 23)) << 32 | i;
   std::vector<std::uint64_t> expected(keys.begin(), keys.end());
   std::stable_sort(expected.begin(), expected.end(), [](auto a, auto b) { return a >> 32 < b >> 32; });
   for (const int threads : {1, 2, 5}) {
-    Buffer<std::uint64_t> sorted = keys;
+    ScratchBuffer<std::uint64_t> sorted = keys;
     detail::radix_sort_high_word(sorted, 23, threads);
     EXPECT_TRUE(std::equal(sorted.begin(), sorted.end(), expected.begin())) << threads << " threads";
   }

@@ -3,7 +3,7 @@
 /// The storage of neighbour lists: a std::vector whose elements are not zeroed on resize. A list
 /// is always written in full before it is read, and zeroing 470 MB of indices first took 0.19 s
 /// of a 1.1 s search on one core; without it the pages are faulted in by the (parallel) fill.
-/// The last two large blocks freed (64 MB or more each, up to a quarter of the machine's memory)
+/// The last two large blocks freed (32 MB or more each, up to a quarter of the machine's memory)
 /// are kept for the next lists of about their size, so a search repeated every time step does
 /// not fault its pages in again; release_cached_buffers() gives them back.
 #include <cstdlib>
@@ -21,15 +21,27 @@ void release_large(void* pointer, std::size_t bytes) noexcept;
 std::size_t cached_buffer_bytes();  // held by the cache now
 }  // namespace detail
 
-template <typename T>
+/// Allocates through the cache of large blocks when `Cached` (lists), else with plain malloc.
+template <typename T, bool Cached = true>
 struct UninitializedAllocator {
   using value_type = T;
   UninitializedAllocator() = default;
   template <typename U>
-  UninitializedAllocator(const UninitializedAllocator<U>&) {}
+  UninitializedAllocator(const UninitializedAllocator<U, Cached>&) {}
+  template <typename U>
+  struct rebind {
+    using other = UninitializedAllocator<U, Cached>;
+  };
 
-  T* allocate(std::size_t n) { return static_cast<T*>(detail::allocate_large(n * sizeof(T))); }
-  void deallocate(T* p, std::size_t n) noexcept { detail::release_large(p, n * sizeof(T)); }
+  T* allocate(std::size_t n) {
+    if constexpr (Cached) return static_cast<T*>(detail::allocate_large(n * sizeof(T)));
+    if (void* p = std::malloc(n ? n * sizeof(T) : 1)) return static_cast<T*>(p);
+    throw std::bad_alloc();
+  }
+  void deallocate(T* p, std::size_t n) noexcept {
+    if constexpr (Cached) return detail::release_large(p, n * sizeof(T));
+    std::free(p);
+  }
   /// Default construction leaves trivial elements uninitialised.
   template <typename U>
   void construct(U* p) noexcept {
@@ -40,10 +52,15 @@ struct UninitializedAllocator {
     ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
   }
   template <typename U>
-  bool operator==(const UninitializedAllocator<U>&) const { return true; }
+  bool operator==(const UninitializedAllocator<U, Cached>&) const { return true; }
 };
 
 template <typename T>
 using Buffer = std::vector<T, UninitializedAllocator<T>>;
+
+/// A search's working arrays (the cell index): not zeroed either, and never cached, so they do
+/// not take the place of the lists' blocks.
+template <typename T>
+using ScratchBuffer = std::vector<T, UninitializedAllocator<T, false>>;
 
 }  // namespace horizon

@@ -32,9 +32,9 @@ public:
   std::size_t occupied_cells() const { return cell_begin_.empty() ? 0 : cell_begin_.size() - 1; }
 
   /// Input id of the point at sorted position p.
-  const Buffer<point_id>& order() const { return order_; }
+  const ScratchBuffer<point_id>& order() const { return order_; }
   /// Coordinates along each axis in sorted order (z is all zeros in 2-D).
-  const Buffer<double>& coords(int axis) const { return sorted_[axis]; }
+  const ScratchBuffer<double>& coords(int axis) const { return sorted_[axis]; }
   /// Sorted positions of the points in occupied cell c.
   Range points_of(std::size_t c) const { return {cell_begin_[c], cell_begin_[c + 1]}; }
 
@@ -55,11 +55,11 @@ private:
 
   Grid grid_;
   std::size_t count_ = 0;
-  Buffer<point_id> order_;
-  std::array<Buffer<double>, 3> sorted_;
+  ScratchBuffer<point_id> order_;
+  std::array<ScratchBuffer<double>, 3> sorted_;
   std::vector<std::int64_t> cell_begin_;  ///< occupied cell -> first sorted position (+ end)
   std::vector<std::array<std::int64_t, 3>> cell_coord_;  ///< occupied cell -> (cx, cy, cz)
-  Buffer<std::int64_t> start_by_id_;  ///< dense only: linear cell id -> first position
+  ScratchBuffer<std::int64_t> start_by_id_;  ///< dense only: linear cell id -> first position
 };
 
 }  // namespace horizon

@@ -21,7 +21,8 @@ namespace horizon::detail {
 // cost nothing) so that the next step's list, a little longer, still fits.
 namespace {
 
-constexpr std::size_t cached_min = std::size_t{64} << 20;
+// 32 MB: glibc maps larger blocks afresh at every malloc (its mmap threshold stops there).
+constexpr std::size_t cached_min = std::size_t{32} << 20;
 constexpr int slots = 2;
 
 struct Block {

@@ -54,7 +54,7 @@ void CellIndex::sort_dense(PointView points, int threads) {
     return grid_.linear_id(c[0], c[1], c[2]);
   };
   if (threads > 1 && cells <= std::int64_t{1} << 32) {
-    Buffer<std::uint64_t> keys(count_);
+    ScratchBuffer<std::uint64_t> keys(count_);
 #pragma omp parallel for schedule(static) num_threads(threads)
     for (std::int64_t i = 0; i < n; ++i) keys[i] = static_cast<std::uint64_t>(cell_id(i)) << 32 | static_cast<std::uint64_t>(i);
     detail::radix_sort_high_word(keys, std::bit_width(static_cast<std::uint64_t>(cells - 1)), threads);
@@ -67,7 +67,7 @@ void CellIndex::sort_dense(PointView points, int threads) {
       if (p < n) order_[p] = static_cast<point_id>(keys[p] & 0xffffffffu);
     }
   } else {
-    Buffer<std::int64_t> id(count_);
+    ScratchBuffer<std::int64_t> id(count_);
     std::fill(start_by_id_.begin(), start_by_id_.end(), 0);
     for (std::int64_t i = 0; i < n; ++i) ++start[(id[i] = cell_id(i)) + 1];
     detail::inclusive_scan(start, start_by_id_.size(), 1);

@@ -7,14 +7,14 @@
 
 namespace horizon::detail {
 
-void radix_sort_high_word(Buffer<std::uint64_t>& keys, int bits, int threads) {
+void radix_sort_high_word(ScratchBuffer<std::uint64_t>& keys, int bits, int threads) {
   if (bits <= 0 || keys.size() < 2) return;
   const auto n = static_cast<std::int64_t>(keys.size());
   const int passes = (bits + 10) / 11;
   const int width = (bits + passes - 1) / passes;
   const std::int64_t buckets = std::int64_t{1} << width;
   const std::uint64_t mask = static_cast<std::uint64_t>(buckets - 1);
-  Buffer<std::uint64_t> other(keys.size());
+  ScratchBuffer<std::uint64_t> other(keys.size());
   std::vector<std::int64_t> places(static_cast<std::size_t>(std::max(1, threads) * buckets));
   for (int pass = 0; pass < passes; ++pass) {
     const int shift = 32 + pass * width;

@@ -11,6 +11,6 @@ namespace horizon::detail {
 
 /// Sorts `keys` by bits [32, 32 + bits) on `threads` threads, stably (least significant digit
 /// first, up to 11 bits per pass, one histogram per thread).
-void radix_sort_high_word(Buffer<std::uint64_t>& keys, int bits, int threads);
+void radix_sort_high_word(ScratchBuffer<std::uint64_t>& keys, int bits, int threads);
 
 }  // namespace horizon::detail
