@@ -33,9 +33,11 @@ test: build
 # The CPU suite (and the MPI tests) built with AddressSanitizer and UndefinedBehaviorSanitizer
 # (not the installed-package consumer, which links without them). The MPI tests run without leak
 # detection: OpenMPI's plugins, unloaded at exit, keep allocations LeakSanitizer cannot attribute.
+# -O1 -g1 (line tables): the SIMD kernels compile 3x faster than at -O2 -g (2-core VM: 50 s vs 147 s).
 SANITIZE = -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
 test-sanitize: deps
-	cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHORIZON_CUDA=off -DHORIZON_PYTHON=off \
+	cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
+	  -DHORIZON_CUDA=off -DHORIZON_PYTHON=off \
 	  -DHORIZON_BENCH=OFF "-DCMAKE_CXX_FLAGS=$(SANITIZE)" "-DCMAKE_EXE_LINKER_FLAGS=$(SANITIZE)"
 	cmake --build build-sanitize -j $(JOBS)
 	cd build-sanitize && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \

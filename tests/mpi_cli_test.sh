@@ -84,4 +84,23 @@ pair_status=$?
 set -e
 [ "$status" -ne 0 ] && grep -q "need the whole list on rank 0" parallel_filter_error.txt
 [ "$pair_status" -ne 0 ] && grep -q "no point is in block 7" pair_error.txt
+# A periodic box under mpirun: every exchange gives the one-node files; a point outside the box
+# fails with status 2 and names it.
+awk 'BEGIN { srand(3); for (i = 0; i < 5000; i++) printf "%.17g %.17g %.17g\n", 10 * rand(), 10 * rand(), 4 * rand() }' > box.xyz
+"$horizon" search box.xyz --horizon 0.6 --box 10,10,4 --backend serial --out serial_box --quiet
+for exchange in thesis halo overlap; do
+  "$mpiexec" --oversubscribe -np 3 "$horizon" search box.xyz --horizon 0.6 --box 10,10,4 --exchange "$exchange" \
+    --out "box_$exchange" --quiet
+  cmp serial_box.offsets.npy "box_$exchange.offsets.npy"
+  cmp serial_box.indices.npy "box_$exchange.indices.npy"
+done
+"$horizon" search box.xyz --horizon 0.6 --box 10,0,0 --half --backend serial --out serial_slab --quiet
+"$mpiexec" --oversubscribe -np 2 "$horizon" search box.xyz --horizon 0.6 --box 10,0,0 --half --exchange halo \
+  --decomposition brick --out slab --quiet
+cmp serial_slab.offsets.npy slab.offsets.npy && cmp serial_slab.indices.npy slab.indices.npy
+set +e
+"$mpiexec" --oversubscribe -np 2 "$horizon" search box.xyz --horizon 0.6 --box 10,10,3 --exchange halo 2> box_error.txt
+status=$?
+set -e
+[ "$status" -eq 2 ] && grep -q "outside the periodic box \[0, 3" box_error.txt
 echo "mpirun CLI: all strategies and both writers identical to serial"

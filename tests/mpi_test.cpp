@@ -7,6 +7,7 @@
 #include "random_problems.hpp"
 #include "horizon/oracle.hpp"
 #include "horizon/distributed.hpp"
+#include "horizon/grid.hpp"
 #include "horizon/search.hpp"
 
 namespace horizon::testing {
@@ -130,6 +131,32 @@ TEST(Distributed, PointsOnSubdomainBorders) {
   }
 }
 
+TEST(Distributed, PeriodicBoxesOnEveryDataset) {
+  // Each dataset wrapped into a box just larger than its extent (periodic on every axis, then
+  // on x only), the horizon kept below half of each period: pairs across the faces.
+  for (int dims : {2, 3})
+    for (const Dataset& data : datasets(dims)) {
+      PointSet points = data.points;
+      const Bounds bounds = bounds_of(points.view());
+      std::array<double, 3> period{0, 0, 0};
+      for (int a = 0; a < dims; ++a) period[a] = std::max(bounds.hi[a] - bounds.lo[a], 2.5 * data.horizon) * 1.01;
+      for (std::size_t i = 0; i < points.size(); ++i)
+        for (int a = 0; a < dims; ++a) points.xyz[i * dims + a] -= bounds.lo[a];
+      for (const bool x_only : {false, true})
+        for (const Strategy& s : strategies) {
+          DistributedOptions options;
+          options.search.horizon = data.horizon;
+          options.search.box = period;
+          if (x_only) options.search.box[1] = options.search.box[2] = 0;
+          options.search.half = x_only;
+          options.exchange = s.exchange;
+          options.decomposition = s.decomposition;
+          EXPECT_TRUE(matches_serial(points, options, nullptr, true))
+              << data.name << " " << dims << "-D " << describe(s) << (x_only ? " x periodic, half" : "");
+        }
+    }
+}
+
 TEST(Distributed, RandomProblemsAgreeWithTheOracle) {
   // The differential problems of differential_test.cpp, at 2 and 3 ranks, each strategy in turn.
   if (rank_count() != 2 && rank_count() != 3) GTEST_SKIP() << "runs at 2 and 3 ranks";
@@ -137,7 +164,6 @@ TEST(Distributed, RandomProblemsAgreeWithTheOracle) {
   for (int n = 0; n < problem_count(); ++n) {
     Problem p = draw(rng);
     p.options.queries = 0;       // every point of a distributed search gets its row
-    p.options.box = {0, 0, 0};  // the distributed layer searches open boxes
     const Strategy& s = strategies[static_cast<std::size_t>(n) % std::size(strategies)];
     DistributedOptions options;
     options.search = p.options;

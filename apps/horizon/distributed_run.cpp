@@ -61,8 +61,10 @@ void run_distributed(const SearchArgs& args) {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   check_output(args);
-  if (!args.box.empty() || !args.queries.empty() || !args.radii.empty())
-    throw Error("--box, --queries and --radii are not supported under mpirun yet: run them without mpirun (one node, any backend)");
+  if (!args.queries.empty() || !args.radii.empty())
+    throw Error("--queries and --radii are not supported under mpirun yet: run them without mpirun (one node, any backend)");
+  if (!args.box.empty() && !args.bond_filters.empty())
+    throw Error("--bond-filters with --box: bonds across the periodic faces have no single segment; not supported");
   if (args.writer == "parallel" && (!args.vtk.empty() || !args.bond_filters.empty() || !args.block_pairs.empty()))
     throw Error("--vtk, --bond-filters and --block-pairs need the whole list on rank 0: use --writer gather (or auto)");
   const Progress progress(args.quiet || rank != 0);

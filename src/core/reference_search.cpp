@@ -15,8 +15,10 @@ namespace {
 
 const char* axis_name(int axis) { return axis == 0 ? "x" : axis == 1 ? "y" : "z"; }
 
-/// Checks the box against the points and the horizon: clear errors naming the axis or point.
-void validate_box(PointView points, const SearchOptions& options, const char* which) {
+}  // namespace
+
+void validate_box(PointView points, const SearchOptions& options, const char* which,
+                  const std::int64_t* ids) {
   const auto& box = options.box;
   for (int a = 0; a < 3; ++a) {
     if (!(std::isfinite(box[a]) && box[a] >= 0))
@@ -32,14 +34,11 @@ void validate_box(PointView points, const SearchOptions& options, const char* wh
     for (int a = 0; a < points.dims(); ++a) {
       const double x = points(i, a);
       if (box[a] > 0 && !(x >= 0 && x < box[a]))
-        throw Error(std::string(which) + " " + std::to_string(i) + " has " + axis_name(a) + " = " +
+        throw Error(std::string(which) + " " + std::to_string(ids ? ids[i] : static_cast<std::int64_t>(i)) + " has " + axis_name(a) + " = " +
                     std::to_string(x) + ", outside the periodic box [0, " + std::to_string(box[a]) + ")");
     }
 }
 
-/// The images of `points` that can be within the horizon of a point of the box: each point
-/// within `reach` of a periodic face, shifted by the period across it (corners: every
-/// combination). Appended to `local`, their originals' ids (+ `id_base`) to `id_of`.
 void append_images(PointView points, const SearchOptions& options, PointSet& local, std::vector<point_id>& id_of,
                    point_id id_base) {
   const int dims = points.dims();
@@ -67,8 +66,6 @@ void append_images(PointView points, const SearchOptions& options, PointSet& loc
         }
   }
 }
-
-}  // namespace
 
 bool is_periodic(const SearchOptions& options) {
   return options.box[0] > 0 || options.box[1] > 0 || options.box[2] > 0;

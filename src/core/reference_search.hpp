@@ -3,6 +3,7 @@
 // plus their images across the periodic faces) and queries against a separate reference set.
 // Both run any backend on one local point set (queries first, references after, as
 // SearchOptions::queries has it) and map the ids of its rows back.
+#include <cstdint>
 #include <vector>
 
 #include "horizon/search.hpp"
@@ -21,6 +22,17 @@ NeighborList search_periodic(PointView points, const SearchOptions& options, Sea
 /// `queries` against `references`, periodic when options.box says so.
 NeighborList search_references(PointView queries, PointView references, const SearchOptions& options,
                                SearchStats& stats);
+
+/// Checks options.box against the points and the horizon: clear errors naming the axis, or the
+/// point (`which` and its index, or ids[index] when given).
+void validate_box(PointView points, const SearchOptions& options, const char* which,
+                  const std::int64_t* ids = nullptr);
+
+/// The images of `points` that can be within the horizon of a point of the box: each point
+/// within the horizon of a periodic face, shifted by the period across it (corners: every
+/// combination). Appended to `local`, their originals' indices (+ `id_base`) to `id_of`.
+void append_images(PointView points, const SearchOptions& options, PointSet& local, std::vector<point_id>& id_of,
+                   point_id id_base);
 
 /// Whether options.box makes any axis periodic.
 bool is_periodic(const SearchOptions& options);

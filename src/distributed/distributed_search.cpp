@@ -2,11 +2,13 @@
 // ghosts -> search locally -> rows of owned points with global ids.
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <numeric>
 
 #include "../core/memory_check.hpp"
 #include "../core/partitioned_search.hpp"
+#include "../core/reference_search.hpp"
 #include "exchange.hpp"
 #include "horizon/distributed.hpp"
 #include "horizon/error.hpp"
@@ -151,6 +153,12 @@ std::vector<Packed> halo_ghosts(const Rank& rank, const std::vector<Packed>& own
 // come first and ghosts after, each run ordered by global id (rows_in_global_ids merges them).
 OwnedRows search_owned(std::vector<Packed>& owned, std::vector<Packed>& ghosts, int dims,
                        const SearchOptions& options) {
+  // Periodic images (negative ids) get no row: they join the ghosts under their original's id.
+  const auto image = [](const Packed& p) { return p[3] < 0; };
+  std::copy_if(owned.begin(), owned.end(), std::back_inserter(ghosts), image);
+  owned.erase(std::remove_if(owned.begin(), owned.end(), image), owned.end());
+  for (Packed& p : ghosts)
+    if (image(p)) p[3] = -p[3] - 1;
   const auto by_id = [](const Packed& a, const Packed& b) { return a[3] < b[3]; };
   std::sort(owned.begin(), owned.end(), by_id);
   std::sort(ghosts.begin(), ghosts.end(), by_id);
@@ -165,6 +173,7 @@ OwnedRows search_owned(std::vector<Packed>& owned, std::vector<Packed>& ghosts, 
     }
   SearchOptions local_options = options;
   local_options.half = false;  // a half list by local ids is not one by global ids
+  local_options.box = {0, 0, 0};  // the images are among the ghosts
   local_options.queries = owned.size();
   OwnedRows out;
   if (owned.empty()) {
@@ -182,9 +191,6 @@ OwnedRows search_owned(std::vector<Packed>& owned, std::vector<Packed>& ghosts, 
 OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<std::int64_t>& ids,
                              std::size_t global_count, const DistributedOptions& options,
                              DistributedStats* stats) {
-  const auto& period = options.search.box;
-  if (period[0] > 0 || period[1] > 0 || period[2] > 0)
-    throw Error("periodic boxes are not supported by the distributed search yet (search on one node)");
   Rank rank{comm, 0, 1};
   MPI_Comm_rank(comm, &rank.id);
   MPI_Comm_size(comm, &rank.size);
@@ -195,6 +201,27 @@ OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<
     throw Error("search_distributed: " + std::to_string(points.size()) + " points but " +
                 std::to_string(ids.size()) + " global ids");
   const int dims = points.dims();
+  // A periodic box: each rank adds the images of the points it holds (those within the horizon
+  // of a periodic face, shifted across it) as points of their own that get no row, with id
+  // -(original + 1); from there the exchanges treat them as any point, and the local search
+  // finds each pair at its nearest image.
+  PointSet extended{dims, {}};
+  std::vector<std::int64_t> extended_ids;
+  if (detail::is_periodic(options.search)) {
+    detail::validate_box(points, options.search, "point", ids.empty() ? nullptr : ids.data());
+    extended.xyz.resize(points.size() * static_cast<std::size_t>(dims));
+    copy_points(points, extended);
+    std::vector<point_id> original(points.size());
+    std::iota(original.begin(), original.end(), 0);
+    detail::append_images(points, options.search, extended, original, 0);
+    for (std::size_t k = 0; k < original.size(); ++k) {
+      const auto i = static_cast<std::size_t>(original[k]);
+      const std::int64_t id = ids.empty() ? static_cast<std::int64_t>(i) : ids[i];
+      extended_ids.push_back(k < points.size() ? id : -(id + 1));
+    }
+    points = extended.view();
+  }
+  const std::vector<std::int64_t>& point_ids = extended_ids.empty() ? ids : extended_ids;
   detail::Traffic traffic;
   std::array<double, 5> seconds{};  // preprocess, decompose, communicate, search, gather
   Stopwatch clock;
@@ -207,7 +234,7 @@ OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<
   std::vector<Packed> owned, ghosts;
   if (global_count > 0) {
     if (options.exchange == Exchange::thesis) {
-      for (std::size_t i = 0; i < points.size(); ++i) owned.push_back(pack(points, i, ids[i]));
+      for (std::size_t i = 0; i < points.size(); ++i) owned.push_back(pack(points, i, point_ids[i]));
       seconds[1] = clock.lap();
       ghosts = thesis_ghosts(rank, owned, box, dims, global_count, options.search.horizon, traffic);
       seconds[2] = clock.lap();
@@ -216,7 +243,7 @@ OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<
       if (everyone_has_all) {
         // Overlap: keep what lies in or near the sub-domain, straight from the input.
         for (std::size_t i = 0; i < points.size(); ++i) {
-          const Packed p = pack(points, i, static_cast<std::int64_t>(i));
+          const Packed p = pack(points, i, point_ids.empty() ? static_cast<std::int64_t>(i) : point_ids[i]);
           if (d.owner(p.data()) == rank.id) owned.push_back(p);
           else if (d.box(rank.id).near(p.data(), dims, reach)) ghosts.push_back(p);
         }
@@ -224,7 +251,7 @@ OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<
       } else {
         std::vector<std::vector<Packed>> outgoing(static_cast<std::size_t>(rank.size));
         for (std::size_t i = 0; i < points.size(); ++i) {
-          const Packed p = pack(points, i, ids[i]);
+          const Packed p = pack(points, i, point_ids[i]);
           outgoing[static_cast<std::size_t>(d.owner(p.data()))].push_back(p);
         }
         owned = detail::exchange_all(comm, outgoing, traffic);  // migration to owners
