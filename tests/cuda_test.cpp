@@ -5,11 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "same_families.hpp"
 #include "horizon/cuda.hpp"
+#include "horizon/device_verlet_list.hpp"
 #include "horizon/generate.hpp"
 #include "horizon/search.hpp"
 
@@ -184,6 +186,49 @@ TEST(Cuda, RepeatedDeviceSearchesOfMovingPointsStayExact) {
   }
   cudaFree(device_xyz);
   cuda_release_cached_memory(0);
+}
+
+TEST(Cuda, DeviceVerletRefreshEqualsAFreshSearchWithinHalfTheSkin) {
+  REQUIRE_GPU();
+  // verlet_list_test.cpp's test with the positions on the GPU: every metric, full and half
+  // lists, 2-D and 3-D, steps up to 0.49 skin, then one point moved half the skin.
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  cudaStream_t stream;
+  ASSERT_EQ(cudaStreamCreate(&stream), cudaSuccess);
+  for (int dims : {2, 3})
+    for (Metric metric : {Metric::euclidean, Metric::manhattan, Metric::chebyshev})
+      for (bool half : {false, true}) {
+        const PointSet points = clustered_cloud(20000, 6, 0.8, dims, 4);
+        const std::size_t bytes = points.xyz.size() * sizeof(double);
+        double* device_xyz = nullptr;
+        ASSERT_EQ(cudaMalloc(&device_xyz, bytes), cudaSuccess);
+        ASSERT_EQ(cudaMemcpy(device_xyz, points.xyz.data(), bytes, cudaMemcpyHostToDevice), cudaSuccess);
+        SearchOptions options = options_for(dims == 3 ? 0.6 : 0.25, Backend::serial);
+        options.metric = metric;
+        options.half = half;
+        const double skin = 0.2 * options.horizon;
+        const DeviceVerletList verlet(device_xyz, points.size(), dims, options, skin, stream);
+        for (double step : {0.0, 0.2 * skin, 0.49 * skin}) {
+          PointSet now = points;  // each coordinate moved so that the metric's step stays below `step`
+          for (double& x : now.xyz) x += (metric == Metric::chebyshev ? step : step / dims) * unit(rng);
+          ASSERT_EQ(cudaMemcpy(device_xyz, now.xyz.data(), bytes, cudaMemcpyHostToDevice), cudaSuccess);
+          ASSERT_FALSE(verlet.needs_rebuild(device_xyz)) << step;
+          const DeviceNeighborList refreshed = verlet.refresh(device_xyz);
+          EXPECT_EQ(refreshed.to_host(half), search(now.view(), options))
+              << dims << "-D " << metric_name(metric) << (half ? " half" : " full") << " step " << step;
+        }
+        PointSet far = points;
+        far.xyz[static_cast<std::size_t>(dims) * 777] += 0.5 * skin;  // one point moved half the skin along x
+        ASSERT_EQ(cudaMemcpy(device_xyz, far.xyz.data(), bytes, cudaMemcpyHostToDevice), cudaSuccess);
+        EXPECT_TRUE(verlet.needs_rebuild(device_xyz));
+        cudaFree(device_xyz);
+      }
+  cudaStreamDestroy(stream);
+  SearchOptions periodic = options_for(0.1, Backend::serial);
+  periodic.box = {1, 1, 1};
+  EXPECT_THROW(DeviceVerletList(nullptr, 0, 3, periodic, 0.01), Error);
+  EXPECT_THROW(DeviceVerletList(nullptr, 0, 3, options_for(0.1, Backend::serial), 0), Error);
 }
 
 TEST(Cuda, ErrorsAreClear) {

@@ -37,13 +37,16 @@ public:
   /// Copies the list to the host (on the stream it was built on).
   NeighborList to_host(bool half) const;
 
-private:
-  friend DeviceNeighborList search_device(const double*, std::size_t, int, const SearchOptions&,
-                                          cuda_stream, SearchStats*);
+  /// Frees device memory of horizon's pool, ordered on `stream`.
   struct Free {
     cuda_stream stream;  // value-initialised (null) by unique_ptr's default constructor
     void operator()(void* pointer) const;
   };
+
+private:
+  friend DeviceNeighborList search_device(const double*, std::size_t, int, const SearchOptions&,
+                                          cuda_stream, SearchStats*);
+  friend class DeviceVerletList;
   std::unique_ptr<std::int64_t, Free> offsets_;
   std::unique_ptr<point_id, Free> indices_;
   cuda_stream stream_ = nullptr;

@@ -2,6 +2,7 @@
 // exists and says why it cannot run.
 #include "backends.hpp"
 #include "horizon/cuda.hpp"
+#include "horizon/device_verlet_list.hpp"
 #include "horizon/error.hpp"
 
 namespace horizon {
@@ -23,6 +24,11 @@ DeviceNeighborList search_device(const double*, std::size_t, int, const SearchOp
                                  SearchStats*) {
   no_cuda();
 }
+DeviceVerletList::DeviceVerletList(const double*, std::size_t, int, const SearchOptions&, double, cuda_stream) {
+  no_cuda();
+}
+bool DeviceVerletList::needs_rebuild(const double*) const { no_cuda(); }
+DeviceNeighborList DeviceVerletList::refresh(const double*) const { no_cuda(); }
 void cuda_release_cached_memory(int) {}
 int cuda_use_device_of(const void*) { no_cuda(); }
 int cuda_device_count() { return 0; }
