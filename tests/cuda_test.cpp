@@ -198,13 +198,14 @@ TEST(Cuda, DeviceVerletRefreshEqualsAFreshSearchWithinHalfTheSkin) {
   ASSERT_EQ(cudaStreamCreate(&stream), cudaSuccess);
   for (int dims : {2, 3})
     for (Metric metric : {Metric::euclidean, Metric::manhattan, Metric::chebyshev})
-      for (bool half : {false, true}) {
+      for (bool half : {false, true})
+      for (double scale : {1.0, 0.2}) {  // long rows (a warp each) and short ones (8 lanes each)
         const PointSet points = clustered_cloud(20000, 6, 0.8, dims, 4);
         const std::size_t bytes = points.xyz.size() * sizeof(double);
         double* device_xyz = nullptr;
         ASSERT_EQ(cudaMalloc(&device_xyz, bytes), cudaSuccess);
         ASSERT_EQ(cudaMemcpy(device_xyz, points.xyz.data(), bytes, cudaMemcpyHostToDevice), cudaSuccess);
-        SearchOptions options = options_for(dims == 3 ? 0.6 : 0.25, Backend::serial);
+        SearchOptions options = options_for(scale * (dims == 3 ? 0.6 : 0.25), Backend::serial);
         options.metric = metric;
         options.half = half;
         const double skin = 0.2 * options.horizon;
@@ -216,7 +217,8 @@ TEST(Cuda, DeviceVerletRefreshEqualsAFreshSearchWithinHalfTheSkin) {
           ASSERT_FALSE(verlet.needs_rebuild(device_xyz)) << step;
           const DeviceNeighborList refreshed = verlet.refresh(device_xyz);
           EXPECT_EQ(refreshed.to_host(half), search(now.view(), options))
-              << dims << "-D " << metric_name(metric) << (half ? " half" : " full") << " step " << step;
+              << dims << "-D " << metric_name(metric) << (half ? " half" : " full") << " scale " << scale
+              << " step " << step;
         }
         PointSet far = points;
         far.xyz[static_cast<std::size_t>(dims) * 777] += 0.5 * skin;  // one point moved half the skin along x

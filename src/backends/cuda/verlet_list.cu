@@ -1,6 +1,7 @@
 // The device Verlet list: candidates from search_device at horizon + skin, then per refresh a
-// count pass, a scan and a fill pass over them, a warp per row (its lanes read 32 consecutive
-// candidates, so the loads are coalesced and the kept ids are written in order by a ballot).
+// count pass, a scan and a fill pass over them, a group of 8-32 lanes per row (its lanes read
+// consecutive candidates, so the loads are coalesced and the kept ids are written in order by a
+// ballot).
 #include <cub/device/device_scan.cuh>
 
 #include <cmath>
@@ -27,18 +28,20 @@ __global__ void find_moved(const double* now, const double* then, std::size_t co
 }
 
 /// Row i's candidates within the horizon, tested as the search tests them (row point minus
-/// candidate). Count: sizes[i]; Fill: their ids, in candidate order, from offsets[i].
-template <Metric M, int D, bool Fill>
+/// candidate), by a group of G lanes of a warp. Count: sizes[i]; Fill: their ids, in candidate
+/// order, from offsets[i].
+template <Metric M, int D, int G, bool Fill>
 __global__ void refresh_rows(const std::int64_t* candidate_offsets, const point_id* candidates, const double* xyz,
                              std::size_t count, double limit, std::int64_t* sizes, const std::int64_t* offsets,
                              point_id* out) {
-  const std::size_t i = (blockIdx.x * static_cast<std::size_t>(blockDim.x) + threadIdx.x) / 32;
-  const unsigned lane = threadIdx.x % 32;
-  if (i >= count) return;  // the whole warp
+  const std::size_t i = (blockIdx.x * static_cast<std::size_t>(blockDim.x) + threadIdx.x) / G;
+  const unsigned lane = threadIdx.x % G, base = threadIdx.x % 32 - lane;
+  const unsigned group = (G == 32 ? 0xffffffffu : (1u << G) - 1) << base;
+  if (i >= count) return;  // the whole group
   const double* p = xyz + D * i;
   const std::int64_t begin = candidate_offsets[i], end = candidate_offsets[i + 1];
   std::int64_t at = Fill ? offsets[i] : 0;
-  for (std::int64_t first = begin; first < end; first += 32) {
+  for (std::int64_t first = begin; first < end; first += G) {
     const std::int64_t k = first + lane;
     bool keep = false;
     point_id j = 0;
@@ -47,7 +50,7 @@ __global__ void refresh_rows(const std::int64_t* candidate_offsets, const point_
       const double* q = xyz + D * static_cast<std::size_t>(j);
       keep = metric_accumulate<M>(p[0] - q[0], p[1] - q[1], D == 3 ? p[2] - q[2] : 0.0) < limit;
     }
-    const unsigned ballot = __ballot_sync(0xffffffffu, keep);
+    const unsigned ballot = (__ballot_sync(group, keep) & group) >> base;
     if (Fill && keep) out[at + __popc(ballot & ((1u << lane) - 1))] = j;
     at += __popc(ballot);
   }
@@ -73,20 +76,21 @@ bool moved_past(const double* now, const double* then, std::size_t count, double
   return host != 0;
 }
 
-/// The refreshed list's offsets (count + 1) and ids, allocated from the meter's pool.
-template <Metric M, int D>
+/// The refreshed list's offsets (count + 1) and ids, allocated from the meter's pool; G lanes
+/// per row.
+template <Metric M, int D, int G>
 std::int64_t refresh_into(const DeviceNeighborList& candidates, const double* xyz, double horizon,
                           cudaStream_t stream, MemoryMeter& meter, DeviceArray<std::int64_t>& offsets,
                           DeviceArray<point_id>& ids) {
   const std::size_t count = candidates.size();
   const double limit = metric_threshold(M, horizon);
-  const unsigned blocks = blocks_for(32 * count);
+  const unsigned blocks = blocks_for(G * count);
   DeviceArray<std::int64_t> sizes(count, meter);
   offsets = DeviceArray<std::int64_t>(count + 1, meter);
   HORIZON_CUDA_CHECK(cudaMemsetAsync(offsets.get(), 0, sizeof(std::int64_t), stream));
   if (count == 0) return 0;
-  refresh_rows<M, D, false><<<blocks, verlet_block, 0, stream>>>(candidates.offsets(), candidates.indices(), xyz,
-                                                                 count, limit, sizes.get(), nullptr, nullptr);
+  refresh_rows<M, D, G, false><<<blocks, verlet_block, 0, stream>>>(candidates.offsets(), candidates.indices(), xyz,
+                                                                    count, limit, sizes.get(), nullptr, nullptr);
   HORIZON_CUDA_CHECK(cudaGetLastError());
   std::size_t temp_bytes = 0;
   HORIZON_CUDA_CHECK(cub::DeviceScan::InclusiveSum(nullptr, temp_bytes, sizes.get(), offsets.get() + 1, count, stream));
@@ -97,8 +101,8 @@ std::int64_t refresh_into(const DeviceNeighborList& candidates, const double* xy
   HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
   ids = DeviceArray<point_id>(static_cast<std::size_t>(total), meter);
   if (total > 0)
-    refresh_rows<M, D, true><<<blocks, verlet_block, 0, stream>>>(candidates.offsets(), candidates.indices(), xyz,
-                                                                   count, limit, nullptr, offsets.get(), ids.get());
+    refresh_rows<M, D, G, true><<<blocks, verlet_block, 0, stream>>>(candidates.offsets(), candidates.indices(), xyz,
+                                                                      count, limit, nullptr, offsets.get(), ids.get());
   HORIZON_CUDA_CHECK(cudaGetLastError());
   return total;
 }
@@ -122,10 +126,17 @@ struct MovedPast {
   bool operator()(Args&... args) const { return moved_past<M, D>(args...); }
 };
 
+/// Lanes per row from the mean row length: short rows would leave most of a warp idle
+/// (m = 1.5: 18 candidates a row).
 template <Metric M, int D>
 struct RefreshInto {
   template <class... Args>
-  std::int64_t operator()(Args&... args) const { return refresh_into<M, D>(args...); }
+  std::int64_t operator()(const DeviceNeighborList& candidates, Args&... args) const {
+    const double mean = candidates.size() ? static_cast<double>(candidates.total()) / candidates.size() : 0;
+    if (mean <= 24) return refresh_into<M, D, 8>(candidates, args...);
+    if (mean <= 64) return refresh_into<M, D, 16>(candidates, args...);
+    return refresh_into<M, D, 32>(candidates, args...);
+  }
 };
 
 }  // namespace
