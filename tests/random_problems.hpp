@@ -84,9 +84,9 @@ inline Problem draw(std::mt19937_64& rng) {
   return p;
 }
 
-inline int problem_count() {
+inline int problem_count(int fallback = 1000) {
   const char* value = std::getenv("HORIZON_DIFFERENTIAL_PROBLEMS");
-  return value ? std::atoi(value) : 1000;
+  return value ? std::atoi(value) : fallback;
 }
 
 inline std::uint64_t seed() {
