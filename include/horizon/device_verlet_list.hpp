@@ -2,7 +2,7 @@
 /// \file device_verlet_list.hpp
 /// The Verlet list of verlet_list.hpp for points kept on the GPU: device coordinates in, device
 /// CSR out, on the caller's stream. The candidates (pairs within horizon + skin) stay on the
-/// GPU; refresh() filters them with the search's arithmetic, a warp per row. Usable (and
+/// GPU; refresh() filters them with the search's arithmetic, 8-32 lanes per row. Usable (and
 /// throwing) when built without CUDA.
 #include <memory>
 
