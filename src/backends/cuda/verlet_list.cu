@@ -1,8 +1,7 @@
-// The device Verlet list: candidates from search_device at horizon + skin, then per refresh one
-// filter pass over them, a group of 8-32 lanes per row (its lanes read consecutive candidates, so
-// the loads are coalesced and the kept ids are written in order by a ballot) into the candidates'
-// own layout; a scan of the row sizes; and a pack of the kept ids into the list. The coordinates
-// are gathered once (a count pass and a fill pass would gather them twice).
+// The device Verlet list: candidates from search_device at horizon + skin, then per refresh a
+// count pass, a scan and a fill pass over them, a group of 8-32 lanes per row (its lanes read
+// consecutive candidates, so the loads are coalesced and the kept ids are written in order by a
+// ballot).
 #include <cub/device/device_scan.cuh>
 
 #include <cmath>
@@ -29,18 +28,19 @@ __global__ void find_moved(const double* now, const double* then, std::size_t co
 }
 
 /// Row i's candidates within the horizon, tested as the search tests them (row point minus
-/// candidate), by a group of G lanes of a warp: their ids, in candidate order, to
-/// kept[candidate_offsets[i]...], their number to sizes[i].
-template <Metric M, int D, int G>
-__global__ void filter_rows(const std::int64_t* candidate_offsets, const point_id* candidates, const double* xyz,
-                            std::size_t count, double limit, std::int64_t* sizes, point_id* kept) {
+/// candidate), by a group of G lanes of a warp. Count: sizes[i]; Fill: their ids, in candidate
+/// order, from offsets[i].
+template <Metric M, int D, int G, bool Fill>
+__global__ void refresh_rows(const std::int64_t* candidate_offsets, const point_id* candidates, const double* xyz,
+                             std::size_t count, double limit, std::int64_t* sizes, const std::int64_t* offsets,
+                             point_id* out) {
   const std::size_t i = (blockIdx.x * static_cast<std::size_t>(blockDim.x) + threadIdx.x) / G;
   const unsigned lane = threadIdx.x % G, base = threadIdx.x % 32 - lane;
   const unsigned group = (G == 32 ? 0xffffffffu : (1u << G) - 1) << base;
   if (i >= count) return;  // the whole group
   const double* p = xyz + D * i;
   const std::int64_t begin = candidate_offsets[i], end = candidate_offsets[i + 1];
-  std::int64_t at = begin;
+  std::int64_t at = Fill ? offsets[i] : 0;
   for (std::int64_t first = begin; first < end; first += G) {
     const std::int64_t k = first + lane;
     bool keep = false;
@@ -51,22 +51,10 @@ __global__ void filter_rows(const std::int64_t* candidate_offsets, const point_i
       keep = metric_accumulate<M>(p[0] - q[0], p[1] - q[1], D == 3 ? p[2] - q[2] : 0.0) < limit;
     }
     const unsigned ballot = (__ballot_sync(group, keep) & group) >> base;
-    if (keep) kept[at + __popc(ballot & ((1u << lane) - 1))] = j;
+    if (Fill && keep) out[at + __popc(ballot & ((1u << lane) - 1))] = j;
     at += __popc(ballot);
   }
-  if (lane == 0) sizes[i] = at - begin;
-}
-
-/// Row i's kept ids (from kept[candidate_offsets[i]]) copied to out[offsets[i]...] by G lanes.
-template <int G>
-__global__ void pack_rows(const std::int64_t* candidate_offsets, const point_id* kept, const std::int64_t* offsets,
-                          std::size_t count, point_id* out) {
-  const std::size_t i = (blockIdx.x * static_cast<std::size_t>(blockDim.x) + threadIdx.x) / G;
-  if (i >= count) return;
-  const point_id* from = kept + candidate_offsets[i];
-  point_id* to = out + offsets[i];
-  const std::int64_t size = offsets[i + 1] - offsets[i];
-  for (std::int64_t k = threadIdx.x % G; k < size; k += G) to[k] = from[k];
+  if (!Fill && lane == 0) sizes[i] = at;
 }
 
 unsigned blocks_for(std::size_t threads) {
@@ -101,9 +89,8 @@ std::int64_t refresh_into(const DeviceNeighborList& candidates, const double* xy
   offsets = DeviceArray<std::int64_t>(count + 1, meter);
   HORIZON_CUDA_CHECK(cudaMemsetAsync(offsets.get(), 0, sizeof(std::int64_t), stream));
   if (count == 0) return 0;
-  DeviceArray<point_id> kept(static_cast<std::size_t>(candidates.total()), meter);
-  filter_rows<M, D, G><<<blocks, verlet_block, 0, stream>>>(candidates.offsets(), candidates.indices(), xyz, count,
-                                                            limit, sizes.get(), kept.get());
+  refresh_rows<M, D, G, false><<<blocks, verlet_block, 0, stream>>>(candidates.offsets(), candidates.indices(), xyz,
+                                                                    count, limit, sizes.get(), nullptr, nullptr);
   HORIZON_CUDA_CHECK(cudaGetLastError());
   std::size_t temp_bytes = 0;
   HORIZON_CUDA_CHECK(cub::DeviceScan::InclusiveSum(nullptr, temp_bytes, sizes.get(), offsets.get() + 1, count, stream));
@@ -114,7 +101,8 @@ std::int64_t refresh_into(const DeviceNeighborList& candidates, const double* xy
   HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
   ids = DeviceArray<point_id>(static_cast<std::size_t>(total), meter);
   if (total > 0)
-    pack_rows<G><<<blocks, verlet_block, 0, stream>>>(candidates.offsets(), kept.get(), offsets.get(), count, ids.get());
+    refresh_rows<M, D, G, true><<<blocks, verlet_block, 0, stream>>>(candidates.offsets(), candidates.indices(), xyz,
+                                                                      count, limit, nullptr, offsets.get(), ids.get());
   HORIZON_CUDA_CHECK(cudaGetLastError());
   return total;
 }
