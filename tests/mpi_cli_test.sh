@@ -103,4 +103,27 @@ set +e
 status=$?
 set -e
 [ "$status" -eq 2 ] && grep -q "outside the periodic box \[0, 3" box_error.txt
+# Per-point radii under mpirun: each rule gives the one-node files (and the ParaView radii); a bad
+# radius fails with status 2 naming the point.
+awk 'BEGIN { srand(5); for (i = 0; i < 20000; i++) printf "%.17g\n", 0.1 + 0.3 * rand() }' > radii.txt
+"$horizon" search points.npy --radii radii.txt --radius-rule scatter --backend serial --out serial_scatter \
+  --vtk serial_scatter.vtu --quiet
+"$horizon" search points.npy --radii radii.txt --radius-rule max --half --backend serial --out serial_max --quiet
+for exchange in thesis halo overlap; do
+  "$mpiexec" --oversubscribe -np 3 "$horizon" search points.npy --radii radii.txt --radius-rule scatter \
+    --exchange "$exchange" --out "scatter_$exchange" --vtk "scatter_$exchange.vtu" --json --quiet > radii.json
+  grep -q '"radius_rule":"scatter"' radii.json
+  cmp serial_scatter.offsets.npy "scatter_$exchange.offsets.npy"
+  cmp serial_scatter.indices.npy "scatter_$exchange.indices.npy"
+  cmp serial_scatter.vtu "scatter_$exchange.vtu"
+  "$mpiexec" --oversubscribe -np 2 "$horizon" search points.npy --radii radii.txt --radius-rule max --half \
+    --exchange "$exchange" --out "max_$exchange" --quiet
+  cmp serial_max.offsets.npy "max_$exchange.offsets.npy" && cmp serial_max.indices.npy "max_$exchange.indices.npy"
+done
+sed '7s/.*/-1/' radii.txt > bad_radii.txt
+set +e
+"$mpiexec" --oversubscribe -np 2 "$horizon" search points.npy --radii bad_radii.txt --exchange halo 2> radius_error.txt
+status=$?
+set -e
+[ "$status" -eq 2 ] && grep -q "point 6 has radius -1" radius_error.txt
 echo "mpirun CLI: all strategies and both writers identical to serial"

@@ -8,6 +8,7 @@
 #include "horizon/oracle.hpp"
 #include "horizon/distributed.hpp"
 #include "horizon/grid.hpp"
+#include "horizon/radii.hpp"
 #include "horizon/search.hpp"
 
 namespace horizon::testing {
@@ -33,23 +34,34 @@ NeighborList oracle_on_root(const PointSet& points, SearchOptions options) {
   return brute_force(points.view(), options);
 }
 
+// Per-point radii and their rule, for matches_serial.
+struct Radii {
+  const std::vector<double>& values;
+  RadiusRule rule;
+};
+
 // The distributed list of `data`, gathered on rank 0, compared there with the serial list (or
 // with `expected`, brute force's list from oracle_on_root); every rank learns the verdict.
 bool matches_serial(const PointSet& points, const DistributedOptions& options, DistributedStats* stats = nullptr,
-                    const NeighborList* expected = nullptr) {
+                    const NeighborList* expected = nullptr, const Radii* radii = nullptr) {
   const std::size_t n = points.size();
   const std::size_t p = static_cast<std::size_t>(rank_count()), r = static_cast<std::size_t>(rank_id());
   PointSet held{points.dims, {}};
   std::vector<std::int64_t> ids;
+  std::vector<double> held_radii;
   if (options.exchange == Exchange::overlap) {
     held = points;
+    if (radii) held_radii = radii->values;
   } else {  // a block of the input by rank, as a parallel read would leave it
     for (std::size_t i = n * r / p; i < n * (r + 1) / p; ++i) {
       ids.push_back(static_cast<std::int64_t>(i));
       for (int a = 0; a < points.dims; ++a) held.xyz.push_back(points.xyz[i * points.dims + a]);
+      if (radii) held_radii.push_back(radii->values[i]);
     }
   }
-  const OwnedRows rows = search_distributed(MPI_COMM_WORLD, held.view(), ids, n, options, stats);
+  const OwnedRows rows =
+      radii ? search_distributed(MPI_COMM_WORLD, held.view(), ids, held_radii, radii->rule, n, options, stats)
+            : search_distributed(MPI_COMM_WORLD, held.view(), ids, n, options, stats);
   const NeighborList gathered = gather_rows(MPI_COMM_WORLD, rows, n, options.search.half);
   int same = 1;
   if (r == 0) {
@@ -165,6 +177,50 @@ TEST(Distributed, PeriodicBoxesOnEveryDataset) {
         }
       }
     }
+}
+
+TEST(Distributed, PerPointRadiiOnEveryDataset) {
+  // Radii over 10x the dataset's horizon, each rule (half lists with max and min), every
+  // strategy, against the one-node search_with_radii (itself checked against brute force in
+  // radii_test.cpp); once against brute force, and in a periodic box.
+  for (int dims : {2, 3})
+    for (const Dataset& data : datasets(dims)) {
+      if (data.name == "huge_extent" || data.name == "dense") continue;  // as in radii_test.cpp
+      std::mt19937_64 rng(31);
+      std::uniform_real_distribution<double> exponent(std::log(0.3), std::log(3.0));
+      std::vector<double> radii(data.points.size());
+      for (double& r : radii) r = data.horizon * std::exp(exponent(rng));
+      for (const auto& [rule, half] : {std::pair{RadiusRule::gather, false}, std::pair{RadiusRule::scatter, false},
+                                       std::pair{RadiusRule::max, true}, std::pair{RadiusRule::min, false}}) {
+        DistributedOptions options;
+        options.search.half = half;
+        const NeighborList expected = rank_id() == 0 ? search_with_radii(data.points.view(), radii, rule, options.search)
+                                                     : NeighborList{};
+        const Radii given{radii, rule};
+        for (const Strategy& s : strategies) {
+          options.exchange = s.exchange;
+          options.decomposition = s.decomposition;
+          EXPECT_TRUE(matches_serial(data.points, options, nullptr, &expected, &given))
+              << data.name << " " << dims << "-D " << describe(s) << " " << radius_rule_name(rule);
+        }
+      }
+    }
+  // A periodic box (x and y), radii 0.4-2.4, max rule, against brute force.
+  PointSet points = random_cloud(600, 3, 23);
+  std::vector<double> radii(points.size());
+  std::mt19937_64 rng(37);
+  std::uniform_real_distribution<double> radius(0.4, 2.4);
+  for (double& r : radii) r = radius(rng);
+  DistributedOptions options;
+  options.search.box = {10, 10, 0};
+  const NeighborList expected =
+      rank_id() == 0 ? brute_force_with_radii(points.view(), radii, RadiusRule::max, options.search) : NeighborList{};
+  const Radii given{radii, RadiusRule::max};
+  for (const Strategy& s : strategies) {
+    options.exchange = s.exchange;
+    options.decomposition = s.decomposition;
+    EXPECT_TRUE(matches_serial(points, options, nullptr, &expected, &given)) << "periodic " << describe(s);
+  }
 }
 
 TEST(Distributed, RandomProblemsAgreeWithTheOracle) {

@@ -61,8 +61,8 @@ void run_distributed(const SearchArgs& args) {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   check_output(args);
-  if (!args.queries.empty() || !args.radii.empty())
-    throw Error("--queries and --radii are not supported under mpirun yet: run them without mpirun (one node, any backend)");
+  if (!args.queries.empty())
+    throw Error("--queries is not supported under mpirun yet: run it without mpirun (one node, any backend)");
   if (!args.box.empty() && !args.bond_filters.empty())
     throw Error("--bond-filters with --box: bonds across the periodic faces have no single segment; not supported");
   if (args.writer == "parallel" && (!args.vtk.empty() || !args.bond_filters.empty() || !args.block_pairs.empty()))
@@ -71,6 +71,8 @@ void run_distributed(const SearchArgs& args) {
   Stopwatch clock;
   PointSet all = load_input(args.input);
   if (!args.blocks.empty()) all.blocks = read_blocks(args.blocks, all.size());
+  const std::vector<double> radii = args.radii.empty() ? std::vector<double>{} : read_radii(args.radii, all.size(), "points");
+  const RadiusRule radius_rule = parse_radius_rule(args.radius_rule);
   // Every rank reads the filters, so bad ones are refused before the search, by all ranks alike.
   const std::vector<BondFilter> filters =
       args.bond_filters.empty() ? std::vector<BondFilter>{} : read_bond_filters(args.bond_filters);
@@ -84,24 +86,31 @@ void run_distributed(const SearchArgs& args) {
 
   DistributedOptions options;
   options.search = search_options(args);
+  for (const double r : radii) options.search.horizon = std::max(options.search.horizon, r);  // the filters' reach
   bind_rank_to_gpu(options.search);
   options.exchange = parse_exchange(args.exchange.empty() ? "halo" : args.exchange);
   options.decomposition = args.decomposition == "brick" ? Decomposition::Kind::brick : Decomposition::Kind::rcb;
   const std::size_t n = all.size();
   PointSet held{all.dims, {}};
   std::vector<std::int64_t> ids;
+  std::vector<double> held_radii;
   if (options.exchange == Exchange::overlap) {
     held = all;
+    held_radii = radii;
   } else {  // this rank's block of the input
     const std::size_t first = n * static_cast<std::size_t>(rank) / static_cast<std::size_t>(size);
     const std::size_t last = n * static_cast<std::size_t>(rank + 1) / static_cast<std::size_t>(size);
     held.xyz.assign(all.xyz.begin() + static_cast<std::ptrdiff_t>(first * all.dims),
                     all.xyz.begin() + static_cast<std::ptrdiff_t>(last * all.dims));
     for (std::size_t i = first; i < last; ++i) ids.push_back(static_cast<std::int64_t>(i));
+    if (!radii.empty())
+      held_radii.assign(radii.begin() + static_cast<std::ptrdiff_t>(first), radii.begin() + static_cast<std::ptrdiff_t>(last));
   }
   progress.say("searching " + std::to_string(n) + " points on " + std::to_string(size) + " ranks");
   DistributedStats stats;
-  const OwnedRows rows = search_distributed(MPI_COMM_WORLD, held.view(), ids, n, options, &stats);
+  const OwnedRows rows =
+      radii.empty() ? search_distributed(MPI_COMM_WORLD, held.view(), ids, n, options, &stats)
+                    : search_distributed(MPI_COMM_WORLD, held.view(), ids, held_radii, radius_rule, n, options, &stats);
   clock.lap();
   // Rows travel to rank 0 only when there is a file to write.
   std::string written;
@@ -125,7 +134,7 @@ void run_distributed(const SearchArgs& args) {
       if (!args.out.empty())
         written = write_neighbor_list(args.out, list, args.format == "csv" ? ListFormat::csv : ListFormat::npy);
       if (!args.vtk.empty()) {
-        write_vtk(args.vtk, all, list, args.vtk_bonds);
+        write_vtk(args.vtk, all, list, args.vtk_bonds, radii);
         written += (written.empty() ? "" : ",") + args.vtk;
       }
     }
@@ -149,6 +158,7 @@ void run_distributed(const SearchArgs& args) {
         {"max_bytes_sent", stats.max_bytes_sent}, {"max_messages_sent", stats.max_messages_sent},
         {"ghosts", stats.ghosts}, {"owned_min", stats.min_owned}, {"owned_max", stats.max_owned},
         {"points_per_second", build > 0 ? static_cast<double>(n) / build : 0.0}, {"outputs", written}};
+    if (!radii.empty()) report["radius_rule"] = radius_rule_name(radius_rule);
     if (!filters.empty()) report["bond_filters"] = filters.size();
     if (!block_pairs.pairs.empty()) report["block_pairs"] = block_pairs.pairs.size();
     if (!filters.empty() || !block_pairs.pairs.empty()) report["bonds_cut"] = unfiltered - total;

@@ -7,10 +7,12 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "horizon/decomposition.hpp"
+#include "horizon/radii.hpp"
 #include "horizon/search.hpp"
 
 namespace horizon {
@@ -54,6 +56,13 @@ struct OwnedRows {
 OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<std::int64_t>& ids,
                              std::size_t global_count, const DistributedOptions& options,
                              DistributedStats* stats = nullptr);
+
+/// As above, each held point with its own radius (`radii`, one per point of `points`) combined
+/// by `rule` (radii.hpp); options.search.horizon is ignored. The ghosts reach the largest
+/// radius of all ranks and carry their radii; the rows equal search_with_radii's.
+OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<std::int64_t>& ids,
+                             std::span<const double> radii, RadiusRule rule, std::size_t global_count,
+                             const DistributedOptions& options, DistributedStats* stats = nullptr);
 
 /// Collective: the whole list in global id order on `root` (an empty list elsewhere), sent
 /// point to point by rank in chunks (no 2^31 limit on a rank's entries).

@@ -5,6 +5,7 @@
 #include <iterator>
 #include <limits>
 #include <numeric>
+#include <optional>
 
 #include "../core/memory_check.hpp"
 #include "../core/partitioned_search.hpp"
@@ -41,8 +42,8 @@ struct Rank {
   int id, size;
 };
 
-Packed pack(PointView points, std::size_t i, std::int64_t id) {
-  Packed p{0, 0, 0, static_cast<double>(id)};
+Packed pack(PointView points, std::size_t i, std::int64_t id, double radius) {
+  Packed p{0, 0, 0, static_cast<double>(id), radius};
   for (int a = 0; a < points.dims(); ++a) p[static_cast<std::size_t>(a)] = points(i, a);
   return p;
 }
@@ -91,7 +92,8 @@ Decomposition decompose(const Rank& rank, PointView points, std::size_t global_c
 // thesis §4.3/§4.5: cells of side horizon over the global box; each rank learns every rank's
 // occupied cells and sends each of them the points it holds in cells adjacent to those.
 std::vector<Packed> thesis_ghosts(const Rank& rank, const std::vector<Packed>& held, const Bounds& box,
-                                  int dims, std::size_t global_count, double horizon, detail::Traffic& traffic) {
+                                  int dims, std::size_t global_count, double horizon, int width,
+                                  detail::Traffic& traffic) {
   const Grid grid = Grid::from_bounds(box, dims, global_count, horizon, 1);
   using Cell = std::array<std::int64_t, 3>;
   auto cell_of = [&](const Packed& p) {
@@ -129,12 +131,12 @@ std::vector<Packed> thesis_ghosts(const Rank& rank, const std::vector<Packed>& h
       if (adjacent) outgoing[static_cast<std::size_t>(r)].push_back(p);
     }
   }
-  return detail::exchange_all(rank.comm, outgoing, traffic);
+  return detail::exchange_all(rank.comm, outgoing, width, traffic);
 }
 
 // Ghosts from spatial neighbours only, over a graph communicator of halo partners.
 std::vector<Packed> halo_ghosts(const Rank& rank, const std::vector<Packed>& owned, const Decomposition& d,
-                                int dims, double reach, detail::Traffic& traffic) {
+                                int dims, double reach, int width, detail::Traffic& traffic) {
   const std::vector<int> partners = d.partners(rank.id, reach);
   const int degree = static_cast<int>(partners.size());
   MPI_Comm graph;
@@ -144,15 +146,16 @@ std::vector<Packed> halo_ghosts(const Rank& rank, const std::vector<Packed>& own
   for (const Packed& p : owned)
     for (std::size_t k = 0; k < partners.size(); ++k)
       if (d.box(partners[k]).near(p.data(), dims, reach)) outgoing[k].push_back(p);
-  std::vector<Packed> ghosts = detail::exchange_with(graph, outgoing, traffic);
+  std::vector<Packed> ghosts = detail::exchange_with(graph, outgoing, width, traffic);
   MPI_Comm_free(&graph);
   return ghosts;
 }
 
 // Searches owned + ghosts on this node; only owned points get rows, in global ids. Owned points
 // come first and ghosts after, each run ordered by global id (rows_in_global_ids merges them).
+// With `rule`, each point is searched with the radius it carries.
 OwnedRows search_owned(std::vector<Packed>& owned, std::vector<Packed>& ghosts, int dims,
-                       const SearchOptions& options) {
+                       const SearchOptions& options, const std::optional<RadiusRule>& rule) {
   // Periodic images (negative ids) get no row: they join the ghosts under their original's id.
   const auto image = [](const Packed& p) { return p[3] < 0; };
   std::copy_if(owned.begin(), owned.end(), std::back_inserter(ghosts), image);
@@ -166,10 +169,12 @@ OwnedRows search_owned(std::vector<Packed>& owned, std::vector<Packed>& ghosts, 
   local.xyz.reserve((owned.size() + ghosts.size()) * static_cast<std::size_t>(dims));
   std::vector<point_id> global;
   global.reserve(owned.size() + ghosts.size());
+  std::vector<double> radii;
   for (const std::vector<Packed>* set : std::initializer_list<const std::vector<Packed>*>{&owned, &ghosts})
     for (const Packed& p : *set) {
       for (int a = 0; a < dims; ++a) local.xyz.push_back(p[static_cast<std::size_t>(a)]);
       global.push_back(static_cast<point_id>(p[3]));
+      if (rule) radii.push_back(p[4]);
     }
   SearchOptions local_options = options;
   local_options.half = false;  // a half list by local ids is not one by global ids
@@ -180,26 +185,53 @@ OwnedRows search_owned(std::vector<Packed>& owned, std::vector<Packed>& ghosts, 
     out.rows = NeighborList({0}, {}, options.half);
     return out;
   }
-  const NeighborList list = search(local.view(), local_options);
+  // With radii every local point gets a row (the ghosts' rows are dropped below).
+  if (rule) local_options.queries = 0;
+  const NeighborList list =
+      rule ? search_with_radii(local.view(), radii, *rule, local_options) : search(local.view(), local_options);
   out.ids.assign(global.begin(), global.begin() + static_cast<std::ptrdiff_t>(owned.size()));
   out.rows = detail::rows_in_global_ids(list, global, owned.size(), options.half, options.sort_rows);
   return out;
 }
 
-}  // namespace
+// Radii: each finite and > 0 (naming the point's global id), a symmetric rule for half lists,
+// the largest of all ranks below half of each period. Returns that largest radius, the reach.
+double largest_radius(const Rank& rank, PointView points, const std::vector<std::int64_t>& ids,
+                      std::span<const double> radii, RadiusRule rule, const SearchOptions& options) {
+  if (radii.size() != points.size())
+    throw Error("radii: " + std::to_string(radii.size()) + " radii for " + std::to_string(points.size()) + " points");
+  double mine = 0, largest = 0;
+  for (std::size_t i = 0; i < radii.size(); ++i) {
+    if (!(std::isfinite(radii[i]) && radii[i] > 0))
+      throw Error("radii: point " + std::to_string(ids.empty() ? static_cast<std::int64_t>(i) : ids[i]) +
+                  " has radius " + std::to_string(radii[i]) + " (each must be finite and > 0)");
+    mine = std::max(mine, radii[i]);
+  }
+  if (options.half && (rule == RadiusRule::gather || rule == RadiusRule::scatter))
+    throw Error(std::string("radii: a half list needs a symmetric rule (max or min), not ") + radius_rule_name(rule));
+  MPI_Allreduce(&mine, &largest, 1, MPI_DOUBLE, MPI_MAX, rank.comm);
+  for (int a = 0; a < 3; ++a)
+    if (options.box[static_cast<std::size_t>(a)] > 0 && !(largest < options.box[static_cast<std::size_t>(a)] / 2))
+      throw Error("radii: the largest radius " + std::to_string(largest) + " must be below half the period (" +
+                  std::to_string(options.box[static_cast<std::size_t>(a)]) + " / 2) on axis " + "xyz"[a]);
+  return largest > 0 ? largest : 1.0;  // no points anywhere: any horizon will do
+}
 
-OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<std::int64_t>& ids,
-                             std::size_t global_count, const DistributedOptions& options,
-                             DistributedStats* stats) {
+OwnedRows distributed_rows(MPI_Comm comm, PointView points, const std::vector<std::int64_t>& ids,
+                           std::span<const double> radii, const std::optional<RadiusRule>& rule,
+                           std::size_t global_count, DistributedOptions options, DistributedStats* stats) {
   Rank rank{comm, 0, 1};
   MPI_Comm_rank(comm, &rank.id);
   MPI_Comm_size(comm, &rank.size);
   validate(points);
-  validate_horizon(options.search.horizon, options.search.cells_per_horizon);
   const bool everyone_has_all = options.exchange == Exchange::overlap;
   if (!everyone_has_all && ids.size() != points.size())
     throw Error("search_distributed: " + std::to_string(points.size()) + " points but " +
                 std::to_string(ids.size()) + " global ids");
+  // With radii the ghosts reach the largest radius of all and carry their own (5 doubles a point).
+  if (rule) options.search.horizon = largest_radius(rank, points, ids, radii, *rule, options.search);
+  const int width = rule ? 5 : 4;
+  validate_horizon(options.search.horizon, options.search.cells_per_horizon);
   const int dims = points.dims();
   // A periodic box: each rank adds the images of the points it holds (those within the horizon
   // of a periodic face, shifted across it) as points of their own that get no row, with id
@@ -207,6 +239,7 @@ OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<
   // finds each pair at its nearest image.
   PointSet extended{dims, {}};
   std::vector<std::int64_t> extended_ids;
+  std::vector<double> extended_radii;
   if (detail::is_periodic(options.search)) {
     detail::validate_box(points, options.search, "point", ids.empty() ? nullptr : ids.data());
     extended.xyz.resize(points.size() * static_cast<std::size_t>(dims));
@@ -218,10 +251,13 @@ OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<
       const auto i = static_cast<std::size_t>(original[k]);
       const std::int64_t id = ids.empty() ? static_cast<std::int64_t>(i) : ids[i];
       extended_ids.push_back(k < points.size() ? id : -(id + 1));
+      if (rule) extended_radii.push_back(radii[i]);
     }
     points = extended.view();
+    if (rule) radii = extended_radii;
   }
   const std::vector<std::int64_t>& point_ids = extended_ids.empty() ? ids : extended_ids;
+  const auto radius = [&](std::size_t i) { return rule ? radii[i] : 0.0; };
   detail::Traffic traffic;
   std::array<double, 5> seconds{};  // preprocess, decompose, communicate, search, gather
   Stopwatch clock;
@@ -234,16 +270,16 @@ OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<
   std::vector<Packed> owned, ghosts;
   if (global_count > 0) {
     if (options.exchange == Exchange::thesis) {
-      for (std::size_t i = 0; i < points.size(); ++i) owned.push_back(pack(points, i, point_ids[i]));
+      for (std::size_t i = 0; i < points.size(); ++i) owned.push_back(pack(points, i, point_ids[i], radius(i)));
       seconds[1] = clock.lap();
-      ghosts = thesis_ghosts(rank, owned, box, dims, global_count, options.search.horizon, traffic);
+      ghosts = thesis_ghosts(rank, owned, box, dims, global_count, options.search.horizon, width, traffic);
       seconds[2] = clock.lap();
     } else {
       const Decomposition d = decompose(rank, points, global_count, box, options.decomposition, everyone_has_all);
       if (everyone_has_all) {
         // Overlap: keep what lies in or near the sub-domain, straight from the input.
         for (std::size_t i = 0; i < points.size(); ++i) {
-          const Packed p = pack(points, i, point_ids.empty() ? static_cast<std::int64_t>(i) : point_ids[i]);
+          const Packed p = pack(points, i, point_ids.empty() ? static_cast<std::int64_t>(i) : point_ids[i], radius(i));
           if (d.owner(p.data()) == rank.id) owned.push_back(p);
           else if (d.box(rank.id).near(p.data(), dims, reach)) ghosts.push_back(p);
         }
@@ -251,17 +287,17 @@ OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<
       } else {
         std::vector<std::vector<Packed>> outgoing(static_cast<std::size_t>(rank.size));
         for (std::size_t i = 0; i < points.size(); ++i) {
-          const Packed p = pack(points, i, point_ids[i]);
+          const Packed p = pack(points, i, point_ids[i], radius(i));
           outgoing[static_cast<std::size_t>(d.owner(p.data()))].push_back(p);
         }
-        owned = detail::exchange_all(comm, outgoing, traffic);  // migration to owners
+        owned = detail::exchange_all(comm, outgoing, width, traffic);  // migration to owners
         seconds[1] = clock.lap();
-        ghosts = halo_ghosts(rank, owned, d, dims, reach, traffic);
+        ghosts = halo_ghosts(rank, owned, d, dims, reach, width, traffic);
         seconds[2] = clock.lap();
       }
     }
   }
-  OwnedRows out = search_owned(owned, ghosts, dims, options.search);
+  OwnedRows out = search_owned(owned, ghosts, dims, options.search, rule);
   seconds[3] = clock.lap();
 
   if (stats) {
@@ -279,6 +315,20 @@ OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<
                               sum[2], fewest, largest, rank.size};
   }
   return out;
+}
+
+}  // namespace
+
+OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<std::int64_t>& ids,
+                             std::size_t global_count, const DistributedOptions& options,
+                             DistributedStats* stats) {
+  return distributed_rows(comm, points, ids, {}, std::nullopt, global_count, options, stats);
+}
+
+OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<std::int64_t>& ids,
+                             std::span<const double> radii, RadiusRule rule, std::size_t global_count,
+                             const DistributedOptions& options, DistributedStats* stats) {
+  return distributed_rows(comm, points, ids, radii, rule, global_count, options, stats);
 }
 
 bool gather_fits(MPI_Comm comm, std::int64_t entries, const SearchOptions& options, int root) {

@@ -1,6 +1,6 @@
 #pragma once
 // Moving points between ranks: every exchange strategy sends points packed as
-// (x, y, z, global id) in doubles (ids below 2^53 are exact) and counts what it sends.
+// (x, y, z, global id[, radius]) in doubles (ids below 2^53 are exact) and counts what it sends.
 #include <mpi.h>
 
 #include <array>
@@ -9,7 +9,9 @@
 
 namespace horizon::detail {
 
-using Packed = std::array<double, 4>;
+/// x, y, z, global id, radius: the radius travels only with per-point radii (`width` 5 below;
+/// else 4 doubles a point go on the wire).
+using Packed = std::array<double, 5>;
 
 struct Traffic {
   std::int64_t bytes = 0, messages = 0;
@@ -17,12 +19,12 @@ struct Traffic {
 
 /// All-to-all: outgoing[r] goes to rank r; returns what every rank sent here. Counts first
 /// (MPI_Alltoall), then the points (MPI_Alltoallv).
-std::vector<Packed> exchange_all(MPI_Comm comm, const std::vector<std::vector<Packed>>& outgoing,
+std::vector<Packed> exchange_all(MPI_Comm comm, const std::vector<std::vector<Packed>>& outgoing, int width,
                                  Traffic& traffic);
 
 /// Neighbourhood exchange over a graph communicator whose sources and destinations are both
 /// `partners`: outgoing[k] goes to partners[k]. Counts first, then the points.
-std::vector<Packed> exchange_with(MPI_Comm graph, const std::vector<std::vector<Packed>>& outgoing,
+std::vector<Packed> exchange_with(MPI_Comm graph, const std::vector<std::vector<Packed>>& outgoing, int width,
                                   Traffic& traffic);
 
 }  // namespace horizon::detail
