@@ -16,12 +16,13 @@ namespace horizon {
 void release_cached_buffers();
 
 namespace detail {
-void* allocate_large(std::size_t bytes);
+void* allocate_scratch(std::size_t bytes);  // malloc; 4 MB or more advised huge pages
+void* allocate_large(std::size_t bytes);    // allocate_scratch, through the cache from 32 MB
 void release_large(void* pointer, std::size_t bytes) noexcept;
 std::size_t cached_buffer_bytes();  // held by the cache now
 }  // namespace detail
 
-/// Allocates through the cache of large blocks when `Cached` (lists), else with plain malloc.
+/// Allocates through the cache of large blocks when `Cached` (lists), else with malloc.
 template <typename T, bool Cached = true>
 struct UninitializedAllocator {
   using value_type = T;
@@ -35,8 +36,7 @@ struct UninitializedAllocator {
 
   T* allocate(std::size_t n) {
     if constexpr (Cached) return static_cast<T*>(detail::allocate_large(n * sizeof(T)));
-    if (void* p = std::malloc(n ? n * sizeof(T) : 1)) return static_cast<T*>(p);
-    throw std::bad_alloc();
+    return static_cast<T*>(detail::allocate_scratch(n * sizeof(T)));
   }
   void deallocate(T* p, std::size_t n) noexcept {
     if constexpr (Cached) return detail::release_large(p, n * sizeof(T));

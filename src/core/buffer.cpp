@@ -1,5 +1,7 @@
 #include "horizon/buffer.hpp"
 
+#include "parallel_copy.hpp"
+
 #include <algorithm>
 #include <mutex>
 #include <utility>
@@ -9,9 +11,13 @@
 
 namespace horizon::detail {
 
-// No madvise(MADV_HUGEPAGE) here: with the kernel's default THP defrag policy the first
-// huge-page faults compact memory synchronously (measured on the CI machine: 1.0 s instead of
-// 0.16 s to fault in 470 MB). The CUDA host path asks for them on the lists it copies into.
+// Blocks of 4 MB or more are advised huge pages (madvise(MADV_HUGEPAGE), a hint): a first
+// search faults in every page of its list and index arrays, and on a virtual machine a 4 KB
+// fault is expensive. 2-core AMD Zen 5 VM, `horizon search lattice:100 --horizon 0.3015` in a
+// fresh process: search 1.01-1.03 s with 4 KB pages, 0.39-0.72 s advised; grid 0.14 s either
+// way (bench/results/page_faults_2core_zen5_vm.txt). An Intel VM of an earlier session saw the
+// opposite for one 470 MB list (1.0 s advised, 0.16 s not: synchronous compaction under the
+// THP defrag policy), so what wins depends on the machine; the fresh-VM case won here.
 //
 // Freed blocks of at least `cached_min` bytes (a search's offsets and indices) are kept and
 // handed to the next requests they fit: a solver that searches every step (free the old list,
@@ -23,6 +29,7 @@ namespace {
 
 // 32 MB: glibc maps larger blocks afresh at every malloc (its mmap threshold stops there).
 constexpr std::size_t cached_min = std::size_t{32} << 20;
+constexpr std::size_t huge_min = std::size_t{4} << 20;
 constexpr int slots = 2;
 
 struct Block {
@@ -52,11 +59,15 @@ void free_all(Block (&blocks)[slots]) {
 
 }  // namespace
 
+void* allocate_scratch(std::size_t bytes) {
+  void* p = std::malloc(bytes ? bytes : 1);
+  if (!p) throw std::bad_alloc();
+  if (bytes >= huge_min) advise_huge_pages(p, bytes);
+  return p;
+}
+
 void* allocate_large(std::size_t bytes) {
-  if (bytes < cached_min) {
-    if (void* p = std::malloc(bytes ? bytes : 1)) return p;
-    throw std::bad_alloc();
-  }
+  if (bytes < cached_min) return allocate_scratch(bytes);
   Cache& c = cache();
   Block stale[slots];
   {
@@ -70,8 +81,7 @@ void* allocate_large(std::size_t bytes) {
   free_all(stale);
   constexpr std::size_t align = std::size_t{2} << 20;
   const std::size_t padded = (bytes + bytes / 16 + align - 1) / align * align;
-  if (void* p = std::malloc(padded)) return p;
-  throw std::bad_alloc();
+  return allocate_scratch(padded);
 }
 
 void release_large(void* pointer, std::size_t bytes) noexcept {
