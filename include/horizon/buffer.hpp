@@ -16,7 +16,7 @@ namespace horizon {
 void release_cached_buffers();
 
 namespace detail {
-void* allocate_scratch(std::size_t bytes);  // malloc; 4 MB or more advised huge pages
+void* allocate_scratch(std::size_t bytes);  // malloc; 32 MB or more advised huge pages
 void* allocate_large(std::size_t bytes);    // allocate_scratch, through the cache from 32 MB
 void release_large(void* pointer, std::size_t bytes) noexcept;
 std::size_t cached_buffer_bytes();  // held by the cache now

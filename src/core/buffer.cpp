@@ -11,13 +11,13 @@
 
 namespace horizon::detail {
 
-// Blocks of 4 MB or more are advised huge pages (madvise(MADV_HUGEPAGE), a hint): a first
-// search faults in every page of its list and index arrays, and on a virtual machine a 4 KB
-// fault is expensive. 2-core AMD Zen 5 VM, `horizon search lattice:100 --horizon 0.3015` in a
-// fresh process: search 1.01-1.03 s with 4 KB pages, 0.39-0.72 s advised; grid 0.14 s either
-// way (bench/results/page_faults_2core_zen5_vm.txt). An Intel VM of an earlier session saw the
-// opposite for one 470 MB list (1.0 s advised, 0.16 s not: synchronous compaction under the
-// THP defrag policy), so what wins depends on the machine; the fresh-VM case won here.
+// Blocks of 32 MB or more (lists) are advised huge pages (madvise(MADV_HUGEPAGE), a hint): a
+// first search faults in every page of its list, and on a virtual machine a 4 KB fault is
+// expensive. 2-core AMD Zen 5 VM, `horizon search lattice:100 --horizon 0.3015` in a fresh
+// process: search 1.0 s with 4 KB pages, 0.3-0.7 s advised (bench/results/page_faults_*).
+// Smaller blocks (the cell index's arrays) are not: advised, the 16-core Xeon host's grid
+// stalled 40-70 ms in 2 of 3 first calls (synchronous compaction under the THP defrag policy;
+// an Intel VM of an earlier session saw the same for a list: 1.0 s advised, 0.16 s not).
 //
 // Freed blocks of at least `cached_min` bytes (a search's offsets and indices) are kept and
 // handed to the next requests they fit: a solver that searches every step (free the old list,
@@ -29,7 +29,6 @@ namespace {
 
 // 32 MB: glibc maps larger blocks afresh at every malloc (its mmap threshold stops there).
 constexpr std::size_t cached_min = std::size_t{32} << 20;
-constexpr std::size_t huge_min = std::size_t{4} << 20;
 constexpr int slots = 2;
 
 struct Block {
@@ -62,7 +61,7 @@ void free_all(Block (&blocks)[slots]) {
 void* allocate_scratch(std::size_t bytes) {
   void* p = std::malloc(bytes ? bytes : 1);
   if (!p) throw std::bad_alloc();
-  if (bytes >= huge_min) advise_huge_pages(p, bytes);
+  if (bytes >= cached_min) advise_huge_pages(p, bytes);
   return p;
 }
 
