@@ -126,4 +126,21 @@ set +e
 status=$?
 set -e
 [ "$status" -eq 2 ] && grep -q "point 6 has radius -1" radius_error.txt
+# Queries under mpirun (one horizon; a radius per query): the one-node files, every exchange.
+"$horizon" generate clusters --count 3000 --clusters 7 --sigma 0.8 --out queries.npy  # the same centres
+awk 'BEGIN { srand(7); for (i = 0; i < 3000; i++) printf "%.17g\n", 0.05 + 0.3 * rand() }' > query_radii.txt
+"$horizon" search points.npy --queries queries.npy --horizon 0.25 --backend serial --out serial_q --quiet
+"$horizon" search points.npy --queries queries.npy --radii query_radii.txt --backend serial --out serial_qr \
+  --vtk serial_qr.vtu --quiet
+for exchange in thesis halo overlap; do
+  "$mpiexec" --oversubscribe -np 3 "$horizon" search points.npy --queries queries.npy --horizon 0.25 \
+    --exchange "$exchange" --out "q_$exchange" --quiet
+  cmp serial_q.offsets.npy "q_$exchange.offsets.npy" && cmp serial_q.indices.npy "q_$exchange.indices.npy"
+  "$mpiexec" --oversubscribe -np 2 "$horizon" search points.npy --queries queries.npy --radii query_radii.txt \
+    --exchange "$exchange" --writer parallel --out "qr_$exchange" --quiet
+  cmp serial_qr.offsets.npy "qr_$exchange.offsets.npy" && cmp serial_qr.indices.npy "qr_$exchange.indices.npy"
+done
+"$mpiexec" --oversubscribe -np 3 "$horizon" search points.npy --queries queries.npy --radii query_radii.txt \
+  --out qr_vtk --vtk qr.vtu --quiet
+cmp serial_qr.vtu qr.vtu
 echo "mpirun CLI: all strategies and both writers identical to serial"

@@ -34,6 +34,25 @@ NeighborList oracle_on_root(const PointSet& points, SearchOptions options) {
   return brute_force(points.view(), options);
 }
 
+// The block of `points` (and of `radii`, if any) this rank holds, with global ids; everything with
+// overlap.
+PointSet held_block(const PointSet& points, const DistributedOptions& options, std::vector<std::int64_t>& ids,
+                    const std::vector<double>* radii = nullptr, std::vector<double>* held_radii = nullptr) {
+  if (options.exchange == Exchange::overlap) {
+    if (radii) *held_radii = *radii;
+    return points;
+  }
+  const std::size_t n = points.size();
+  const std::size_t p = static_cast<std::size_t>(rank_count()), r = static_cast<std::size_t>(rank_id());
+  PointSet held{points.dims, {}};
+  for (std::size_t i = n * r / p; i < n * (r + 1) / p; ++i) {
+    ids.push_back(static_cast<std::int64_t>(i));
+    for (int a = 0; a < points.dims; ++a) held.xyz.push_back(points.xyz[i * points.dims + a]);
+    if (radii) held_radii->push_back((*radii)[i]);
+  }
+  return held;
+}
+
 // Per-point radii and their rule, for matches_serial.
 struct Radii {
   const std::vector<double>& values;
@@ -45,30 +64,36 @@ struct Radii {
 bool matches_serial(const PointSet& points, const DistributedOptions& options, DistributedStats* stats = nullptr,
                     const NeighborList* expected = nullptr, const Radii* radii = nullptr) {
   const std::size_t n = points.size();
-  const std::size_t p = static_cast<std::size_t>(rank_count()), r = static_cast<std::size_t>(rank_id());
-  PointSet held{points.dims, {}};
   std::vector<std::int64_t> ids;
   std::vector<double> held_radii;
-  if (options.exchange == Exchange::overlap) {
-    held = points;
-    if (radii) held_radii = radii->values;
-  } else {  // a block of the input by rank, as a parallel read would leave it
-    for (std::size_t i = n * r / p; i < n * (r + 1) / p; ++i) {
-      ids.push_back(static_cast<std::int64_t>(i));
-      for (int a = 0; a < points.dims; ++a) held.xyz.push_back(points.xyz[i * points.dims + a]);
-      if (radii) held_radii.push_back(radii->values[i]);
-    }
-  }
+  const PointSet held = held_block(points, options, ids, radii ? &radii->values : nullptr, &held_radii);
   const OwnedRows rows =
       radii ? search_distributed(MPI_COMM_WORLD, held.view(), ids, held_radii, radii->rule, n, options, stats)
             : search_distributed(MPI_COMM_WORLD, held.view(), ids, n, options, stats);
   const NeighborList gathered = gather_rows(MPI_COMM_WORLD, rows, n, options.search.half);
   int same = 1;
-  if (r == 0) {
+  if (rank_id() == 0) {
     SearchOptions serial = options.search;
     serial.backend = Backend::serial;
     same = expected ? gathered == *expected : gathered == search(points.view(), serial);
   }
+  MPI_Bcast(&same, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return same == 1;
+}
+
+// The distributed rows of `queries` among `references`, gathered on rank 0 and compared there
+// with `expected`; every rank learns the verdict.
+bool queries_match(const PointSet& queries, const PointSet& references, const DistributedOptions& options,
+                   const NeighborList& expected, const std::vector<double>* radii = nullptr) {
+  std::vector<std::int64_t> query_ids, reference_ids;
+  std::vector<double> held_radii;
+  const PointSet held_queries = held_block(queries, options, query_ids, radii, &held_radii);
+  const PointSet held_references = held_block(references, options, reference_ids);
+  const OwnedRows rows =
+      search_distributed_queries(MPI_COMM_WORLD, held_queries.view(), query_ids, queries.size(),
+                                 held_references.view(), reference_ids, references.size(), options, held_radii);
+  const NeighborList gathered = gather_rows(MPI_COMM_WORLD, rows, queries.size(), false);
+  int same = rank_id() == 0 ? gathered == expected : 1;
   MPI_Bcast(&same, 1, MPI_INT, 0, MPI_COMM_WORLD);
   return same == 1;
 }
@@ -221,6 +246,49 @@ TEST(Distributed, PerPointRadiiOnEveryDataset) {
     options.exchange = s.exchange;
     options.decomposition = s.decomposition;
     EXPECT_TRUE(matches_serial(points, options, nullptr, &expected, &given)) << "periodic " << describe(s);
+  }
+}
+
+TEST(Distributed, QueriesAmongReferencesOnEveryDataset) {
+  // 400 queries (a quarter of them on reference points: nothing is excluded as self) against each
+  // dataset, with one horizon and with a radius per query (over 10x), the strategies in turn,
+  // against the one-node query search; then in a periodic box against brute force.
+  std::size_t turn = 0;
+  for (int dims : {2, 3})
+    for (const Dataset& data : datasets(dims)) {
+      PointSet queries = random_cloud(300, dims, 41);
+      const std::size_t on_points = std::min<std::size_t>(100, data.points.size());
+      queries.xyz.insert(queries.xyz.end(), data.points.xyz.begin(),
+                         data.points.xyz.begin() + static_cast<std::ptrdiff_t>(on_points * dims));
+      std::mt19937_64 rng(43);
+      std::uniform_real_distribution<double> exponent(std::log(0.3), std::log(3.0));
+      std::vector<double> radii(queries.size());
+      for (double& r : radii) r = data.horizon * std::exp(exponent(rng));
+      for (const bool with_radii : {false, true}) {
+        if (with_radii && (data.name == "huge_extent" || data.name == "dense")) continue;  // as in radii_test.cpp
+        DistributedOptions options;
+        options.search.horizon = data.horizon;
+        NeighborList expected;
+        if (rank_id() == 0)
+          expected = with_radii ? search_with_radii(queries.view(), radii, data.points.view(), options.search)
+                                : search(queries.view(), data.points.view(), options.search);
+        const Strategy& s = strategies[turn++ % std::size(strategies)];
+        options.exchange = s.exchange;
+        options.decomposition = s.decomposition;
+        EXPECT_TRUE(queries_match(queries, data.points, options, expected, with_radii ? &radii : nullptr))
+            << data.name << " " << dims << "-D " << describe(s) << (with_radii ? " radii" : "");
+      }
+    }
+  const PointSet references = random_cloud(600, 3, 23), queries = random_cloud(200, 3, 29);
+  DistributedOptions options;
+  options.search.horizon = 1.5;
+  options.search.box = {10, 10, 0};
+  const NeighborList expected =
+      rank_id() == 0 ? brute_force(queries.view(), references.view(), options.search) : NeighborList{};
+  for (const Strategy& s : strategies) {
+    options.exchange = s.exchange;
+    options.decomposition = s.decomposition;
+    EXPECT_TRUE(queries_match(queries, references, options, expected)) << "periodic " << describe(s);
   }
 }
 

@@ -61,8 +61,8 @@ void run_distributed(const SearchArgs& args) {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   check_output(args);
-  if (!args.queries.empty())
-    throw Error("--queries is not supported under mpirun yet: run it without mpirun (one node, any backend)");
+  if (!args.block_pairs.empty() && !args.queries.empty())
+    throw Error("--block-pairs with --queries: not supported (the blocks are the input's points')");
   if (!args.box.empty() && !args.bond_filters.empty())
     throw Error("--bond-filters with --box: bonds across the periodic faces have no single segment; not supported");
   if (args.writer == "parallel" && (!args.vtk.empty() || !args.bond_filters.empty() || !args.block_pairs.empty()))
@@ -71,8 +71,14 @@ void run_distributed(const SearchArgs& args) {
   Stopwatch clock;
   PointSet all = load_input(args.input);
   if (!args.blocks.empty()) all.blocks = read_blocks(args.blocks, all.size());
-  const std::vector<double> radii = args.radii.empty() ? std::vector<double>{} : read_radii(args.radii, all.size(), "points");
+  const PointSet queries = args.queries.empty() ? PointSet{} : load_input(args.queries);
+  const PointSet& row_points = args.queries.empty() ? all : queries;  // the rows
+  const std::vector<double> radii = args.radii.empty() ? std::vector<double>{}
+                                    : read_radii(args.radii, row_points.size(), args.queries.empty() ? "points" : "queries");
   const RadiusRule radius_rule = parse_radius_rule(args.radius_rule);
+  if (!radii.empty() && !args.queries.empty() && radius_rule != RadiusRule::gather)
+    throw Error(std::string("--radii with --queries: only --radius-rule gather (each query's own radius), not ") +
+                radius_rule_name(radius_rule));
   // Every rank reads the filters, so bad ones are refused before the search, by all ranks alike.
   const std::vector<BondFilter> filters =
       args.bond_filters.empty() ? std::vector<BondFilter>{} : read_bond_filters(args.bond_filters);
@@ -90,27 +96,38 @@ void run_distributed(const SearchArgs& args) {
   bind_rank_to_gpu(options.search);
   options.exchange = parse_exchange(args.exchange.empty() ? "halo" : args.exchange);
   options.decomposition = args.decomposition == "brick" ? Decomposition::Kind::brick : Decomposition::Kind::rcb;
-  const std::size_t n = all.size();
-  PointSet held{all.dims, {}};
-  std::vector<std::int64_t> ids;
-  std::vector<double> held_radii;
-  if (options.exchange == Exchange::overlap) {
-    held = all;
-    held_radii = radii;
-  } else {  // this rank's block of the input
-    const std::size_t first = n * static_cast<std::size_t>(rank) / static_cast<std::size_t>(size);
-    const std::size_t last = n * static_cast<std::size_t>(rank + 1) / static_cast<std::size_t>(size);
-    held.xyz.assign(all.xyz.begin() + static_cast<std::ptrdiff_t>(first * all.dims),
-                    all.xyz.begin() + static_cast<std::ptrdiff_t>(last * all.dims));
+  const std::size_t n = row_points.size();
+  // This rank's block of a point set (and of its radii): ids and values; everything with overlap.
+  const auto block = [&](const PointSet& set, std::vector<std::int64_t>& ids, const std::vector<double>& values,
+                         std::vector<double>& held_values) {
+    if (options.exchange == Exchange::overlap) {
+      held_values = values;
+      return set;
+    }
+    const std::size_t count = set.size();
+    const std::size_t first = count * static_cast<std::size_t>(rank) / static_cast<std::size_t>(size);
+    const std::size_t last = count * static_cast<std::size_t>(rank + 1) / static_cast<std::size_t>(size);
+    PointSet held{set.dims, {set.xyz.begin() + static_cast<std::ptrdiff_t>(first * set.dims),
+                             set.xyz.begin() + static_cast<std::ptrdiff_t>(last * set.dims)}};
     for (std::size_t i = first; i < last; ++i) ids.push_back(static_cast<std::int64_t>(i));
-    if (!radii.empty())
-      held_radii.assign(radii.begin() + static_cast<std::ptrdiff_t>(first), radii.begin() + static_cast<std::ptrdiff_t>(last));
-  }
+    if (!values.empty())
+      held_values.assign(values.begin() + static_cast<std::ptrdiff_t>(first), values.begin() + static_cast<std::ptrdiff_t>(last));
+    return held;
+  };
+  std::vector<std::int64_t> ids, reference_ids;
+  std::vector<double> held_radii, no_radii, unused;
+  const PointSet held = block(row_points, ids, radii, held_radii);
   progress.say("searching " + std::to_string(n) + " points on " + std::to_string(size) + " ranks");
   DistributedStats stats;
-  const OwnedRows rows =
-      radii.empty() ? search_distributed(MPI_COMM_WORLD, held.view(), ids, n, options, &stats)
-                    : search_distributed(MPI_COMM_WORLD, held.view(), ids, held_radii, radius_rule, n, options, &stats);
+  OwnedRows rows;
+  if (!args.queries.empty()) {
+    const PointSet held_references = block(all, reference_ids, no_radii, unused);
+    rows = search_distributed_queries(MPI_COMM_WORLD, held.view(), ids, n, held_references.view(), reference_ids,
+                                      all.size(), options, held_radii, &stats);
+  } else {
+    rows = radii.empty() ? search_distributed(MPI_COMM_WORLD, held.view(), ids, n, options, &stats)
+                         : search_distributed(MPI_COMM_WORLD, held.view(), ids, held_radii, radius_rule, n, options, &stats);
+  }
   clock.lap();
   // Rows travel to rank 0 only when there is a file to write.
   std::string written;
@@ -127,14 +144,17 @@ void run_distributed(const SearchArgs& args) {
     stats.gather = clock.lap();
     if (rank == 0) {
       // Filters and ParaView output on rank 0, as a one-node search applies them.
-      if (!filters.empty()) list = filter_bonds(list, all.view(), filters, bond_reach(options.search, all.dims), args.threads);
+      const double reach = bond_reach(options.search, all.dims);
+      if (!filters.empty())
+        list = args.queries.empty() ? filter_bonds(list, all.view(), filters, reach, args.threads)
+                                    : filter_bonds(list, queries.view(), all.view(), filters, reach, args.threads);
       if (!block_pairs.pairs.empty()) list = filter_blocks(list, all.blocks, block_pairs, args.threads);
       total = list.total();
       filter_seconds = clock.lap();
       if (!args.out.empty())
         written = write_neighbor_list(args.out, list, args.format == "csv" ? ListFormat::csv : ListFormat::npy);
       if (!args.vtk.empty()) {
-        write_vtk(args.vtk, all, list, args.vtk_bonds, radii);
+        write_vtk(args.vtk, row_points, list, args.vtk_bonds, radii);
         written += (written.empty() ? "" : ",") + args.vtk;
       }
     }

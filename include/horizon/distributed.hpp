@@ -64,6 +64,17 @@ OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<
                              std::span<const double> radii, RadiusRule rule, std::size_t global_count,
                              const DistributedOptions& options, DistributedStats* stats = nullptr);
 
+/// Collective: the families of query points among reference points (full lists, nothing
+/// excluded as self), as search(queries, references, ...) on one node: row q holds every
+/// reference within the horizon or, with `radii` (one per held query), within its query's own
+/// radius. Queries and references are held as `points` and `ids` above (with overlap every rank
+/// passes all of both). OwnedRows.ids are query ids; entries are reference ids.
+OwnedRows search_distributed_queries(MPI_Comm comm, PointView queries, const std::vector<std::int64_t>& query_ids,
+                                     std::size_t global_queries, PointView references,
+                                     const std::vector<std::int64_t>& reference_ids, std::size_t global_references,
+                                     const DistributedOptions& options, std::span<const double> radii = {},
+                                     DistributedStats* stats = nullptr);
+
 /// Collective: the whole list in global id order on `root` (an empty list elsewhere), sent
 /// point to point by rank in chunks (no 2^31 limit on a rank's entries).
 NeighborList gather_rows(MPI_Comm comm, const OwnedRows& owned, std::size_t global_count, bool half,

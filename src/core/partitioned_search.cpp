@@ -110,7 +110,8 @@ void search_part(PointView points, Part& part, const SearchOptions& part_options
 }  // namespace
 
 NeighborList rows_in_global_ids(const NeighborList& list, const std::vector<point_id>& global, std::size_t owned,
-                                bool half, bool sort_rows) {
+                                bool half, bool sort_rows, std::size_t references_from) {
+  if (references_from == SIZE_MAX) references_from = owned;
   Buffer<std::int64_t> offsets(owned + 1);
   offsets[0] = 0;
   const auto rows = static_cast<std::int64_t>(owned);
@@ -120,7 +121,7 @@ NeighborList rows_in_global_ids(const NeighborList& list, const std::vector<poin
   Buffer<point_id> indices(static_cast<std::size_t>(offsets[owned]));
 #pragma omp parallel for schedule(dynamic, 1024)
   for (std::int64_t i = 0; i < rows; ++i)
-    write_row(list, static_cast<std::size_t>(i), global, owned, half, sort_rows, indices.data() + offsets[i]);
+    write_row(list, static_cast<std::size_t>(i), global, references_from, half, sort_rows, indices.data() + offsets[i]);
   return NeighborList(std::move(offsets), std::move(indices), half);
 }
 

@@ -3,6 +3,7 @@
 // points are cut into parts of equal point count by recursive coordinate bisection; each part
 // is searched, with the points within the horizon of its box as references only, by its own
 // host thread; its rows, mapped to global ids, are then copied into the list in input order.
+#include <cstdint>
 #include <vector>
 
 #include "horizon/search.hpp"
@@ -13,9 +14,10 @@ namespace horizon::detail {
 /// first, then references), with ids mapped through `global`. Each local row is two runs
 /// ascending in global id (owned, then references) when `global` ascends within each: one
 /// merge sorts it. Half lists keep j > i by global id (local ids do not order globally).
-/// Shared by the multi-device driver and the distributed search; parallel over rows.
+/// Shared by the multi-device driver and the distributed search; parallel over rows. For a list
+/// of queries among local references, `references_from` is where the second run starts.
 NeighborList rows_in_global_ids(const NeighborList& list, const std::vector<point_id>& global, std::size_t owned,
-                                bool half, bool sort_rows);
+                                bool half, bool sort_rows, std::size_t references_from = SIZE_MAX);
 
 /// The list of `points` from one search per entry of `part_options` (each a node-local search:
 /// a backend and, for cuda, a device). stats.parts gets each part's points, entries and time;

@@ -48,6 +48,13 @@ Packed pack(PointView points, std::size_t i, std::int64_t id, double radius) {
   return p;
 }
 
+// Whether a packed point is a reference (every point, without a query set): only references
+// travel as ghosts. Periodic images carry -(id + 1).
+bool is_reference(const Packed& p, std::int64_t first_query) {
+  const double id = p[3] < 0 ? -p[3] - 1 : p[3];
+  return first_query < 0 || id < static_cast<double>(first_query);
+}
+
 Bounds global_bounds(const Rank& rank, PointView points) {
   std::array<double, 3> lo, hi;
   lo.fill(std::numeric_limits<double>::infinity());
@@ -93,7 +100,7 @@ Decomposition decompose(const Rank& rank, PointView points, std::size_t global_c
 // occupied cells and sends each of them the points it holds in cells adjacent to those.
 std::vector<Packed> thesis_ghosts(const Rank& rank, const std::vector<Packed>& held, const Bounds& box,
                                   int dims, std::size_t global_count, double horizon, int width,
-                                  detail::Traffic& traffic) {
+                                  std::int64_t first_query, detail::Traffic& traffic) {
   const Grid grid = Grid::from_bounds(box, dims, global_count, horizon, 1);
   using Cell = std::array<std::int64_t, 3>;
   auto cell_of = [&](const Packed& p) {
@@ -122,6 +129,7 @@ std::vector<Packed> thesis_ghosts(const Rank& rank, const std::vector<Packed>& h
     const Cell* first = reinterpret_cast<const Cell*>(all.data() + displs[static_cast<std::size_t>(r)]);
     const Cell* last = first + counts[static_cast<std::size_t>(r)] / 3;
     for (const Packed& p : held) {
+      if (!is_reference(p, first_query)) continue;
       const Cell c = cell_of(p);
       bool adjacent = false;
       for (std::int64_t dz = -reach_z; dz <= reach_z && !adjacent; ++dz)
@@ -136,7 +144,8 @@ std::vector<Packed> thesis_ghosts(const Rank& rank, const std::vector<Packed>& h
 
 // Ghosts from spatial neighbours only, over a graph communicator of halo partners.
 std::vector<Packed> halo_ghosts(const Rank& rank, const std::vector<Packed>& owned, const Decomposition& d,
-                                int dims, double reach, int width, detail::Traffic& traffic) {
+                                int dims, double reach, int width, std::int64_t first_query,
+                                detail::Traffic& traffic) {
   const std::vector<int> partners = d.partners(rank.id, reach);
   const int degree = static_cast<int>(partners.size());
   MPI_Comm graph;
@@ -144,18 +153,54 @@ std::vector<Packed> halo_ghosts(const Rank& rank, const std::vector<Packed>& own
                                  MPI_UNWEIGHTED, MPI_INFO_NULL, 0, &graph);
   std::vector<std::vector<Packed>> outgoing(partners.size());
   for (const Packed& p : owned)
-    for (std::size_t k = 0; k < partners.size(); ++k)
+    for (std::size_t k = 0; k < partners.size() && is_reference(p, first_query); ++k)
       if (d.box(partners[k]).near(p.data(), dims, reach)) outgoing[k].push_back(p);
   std::vector<Packed> ghosts = detail::exchange_with(graph, outgoing, width, traffic);
   MPI_Comm_free(&graph);
   return ghosts;
 }
 
+// The rows of the owned queries (after the owned references in `owned`, both by id) among the
+// owned references and the ghosts, in global query and reference ids.
+OwnedRows query_rows(const std::vector<Packed>& owned, const std::vector<Packed>& ghosts, int dims,
+                     const SearchOptions& options, bool with_radii, std::int64_t first_query) {
+  const auto queries_from = std::find_if(owned.begin(), owned.end(), [&](const Packed& p) { return !is_reference(p, first_query); });
+  PointSet queries{dims, {}}, references{dims, {}};
+  std::vector<double> radii;
+  std::vector<point_id> global;
+  OwnedRows out;
+  for (auto p = queries_from; p != owned.end(); ++p) {
+    for (int a = 0; a < dims; ++a) queries.xyz.push_back((*p)[static_cast<std::size_t>(a)]);
+    out.ids.push_back(static_cast<std::int64_t>((*p)[3]) - first_query);
+    radii.push_back((*p)[4]);
+  }
+  for (auto p = owned.begin(); p != queries_from; ++p) global.push_back(static_cast<point_id>((*p)[3]));
+  const std::size_t owned_references = global.size();
+  for (const Packed& p : ghosts)
+    if (is_reference(p, first_query)) global.push_back(static_cast<point_id>(p[3]));
+  for (const std::vector<Packed>* set : std::initializer_list<const std::vector<Packed>*>{&owned, &ghosts})
+    for (const Packed& p : *set)
+      if (is_reference(p, first_query))
+        for (int a = 0; a < dims; ++a) references.xyz.push_back(p[static_cast<std::size_t>(a)]);
+  SearchOptions local_options = options;
+  local_options.box = {0, 0, 0};  // the images are among the ghosts
+  if (out.ids.empty()) {
+    out.rows = NeighborList({0}, {}, false);
+    return out;
+  }
+  const NeighborList list = with_radii ? search_with_radii(queries.view(), radii, references.view(), local_options)
+                                       : search(queries.view(), references.view(), local_options);
+  out.rows = detail::rows_in_global_ids(list, global, out.ids.size(), false, options.sort_rows, owned_references);
+  return out;
+}
+
 // Searches owned + ghosts on this node; only owned points get rows, in global ids. Owned points
 // come first and ghosts after, each run ordered by global id (rows_in_global_ids merges them).
-// With `rule`, each point is searched with the radius it carries.
+// With `rule`, each point is searched with the radius it carries. With a query set (ids from
+// first_query on) only the owned queries get rows, among the references, owned and ghosts.
 OwnedRows search_owned(std::vector<Packed>& owned, std::vector<Packed>& ghosts, int dims,
-                       const SearchOptions& options, const std::optional<RadiusRule>& rule) {
+                       const SearchOptions& options, const std::optional<RadiusRule>& rule,
+                       std::int64_t first_query) {
   // Periodic images (negative ids) get no row: they join the ghosts under their original's id.
   const auto image = [](const Packed& p) { return p[3] < 0; };
   std::copy_if(owned.begin(), owned.end(), std::back_inserter(ghosts), image);
@@ -165,6 +210,7 @@ OwnedRows search_owned(std::vector<Packed>& owned, std::vector<Packed>& ghosts, 
   const auto by_id = [](const Packed& a, const Packed& b) { return a[3] < b[3]; };
   std::sort(owned.begin(), owned.end(), by_id);
   std::sort(ghosts.begin(), ghosts.end(), by_id);
+  if (first_query >= 0) return query_rows(owned, ghosts, dims, options, rule.has_value(), first_query);
   PointSet local{dims, {}};
   local.xyz.reserve((owned.size() + ghosts.size()) * static_cast<std::size_t>(dims));
   std::vector<point_id> global;
@@ -196,20 +242,21 @@ OwnedRows search_owned(std::vector<Packed>& owned, std::vector<Packed>& ghosts, 
 
 // Radii: each finite and > 0 (naming the point's global id), a symmetric rule for half lists,
 // the largest of all ranks below half of each period. Returns that largest radius, the reach.
-double largest_radius(const Rank& rank, PointView points, const std::vector<std::int64_t>& ids,
-                      std::span<const double> radii, RadiusRule rule, const SearchOptions& options) {
+double largest_radius(MPI_Comm comm, PointView points, const std::vector<std::int64_t>& ids,
+                      std::span<const double> radii, RadiusRule rule, const SearchOptions& options,
+                      const std::string& what = "point") {
   if (radii.size() != points.size())
-    throw Error("radii: " + std::to_string(radii.size()) + " radii for " + std::to_string(points.size()) + " points");
+    throw Error("radii: " + std::to_string(radii.size()) + " radii for " + std::to_string(points.size()) + " " + what + "s");
   double mine = 0, largest = 0;
   for (std::size_t i = 0; i < radii.size(); ++i) {
     if (!(std::isfinite(radii[i]) && radii[i] > 0))
-      throw Error("radii: point " + std::to_string(ids.empty() ? static_cast<std::int64_t>(i) : ids[i]) +
+      throw Error("radii: " + what + " " + std::to_string(ids.empty() ? static_cast<std::int64_t>(i) : ids[i]) +
                   " has radius " + std::to_string(radii[i]) + " (each must be finite and > 0)");
     mine = std::max(mine, radii[i]);
   }
   if (options.half && (rule == RadiusRule::gather || rule == RadiusRule::scatter))
     throw Error(std::string("radii: a half list needs a symmetric rule (max or min), not ") + radius_rule_name(rule));
-  MPI_Allreduce(&mine, &largest, 1, MPI_DOUBLE, MPI_MAX, rank.comm);
+  MPI_Allreduce(&mine, &largest, 1, MPI_DOUBLE, MPI_MAX, comm);
   for (int a = 0; a < 3; ++a)
     if (options.box[static_cast<std::size_t>(a)] > 0 && !(largest < options.box[static_cast<std::size_t>(a)] / 2))
       throw Error("radii: the largest radius " + std::to_string(largest) + " must be below half the period (" +
@@ -217,9 +264,13 @@ double largest_radius(const Rank& rank, PointView points, const std::vector<std:
   return largest > 0 ? largest : 1.0;  // no points anywhere: any horizon will do
 }
 
+// The distributed search of `points` (ids, and radii with a rule, as held by this rank; the
+// horizon is the reach: the largest radius with radii). With first_query >= 0, the points with
+// ids from there on are queries (rows only) and the others references (entries only).
 OwnedRows distributed_rows(MPI_Comm comm, PointView points, const std::vector<std::int64_t>& ids,
                            std::span<const double> radii, const std::optional<RadiusRule>& rule,
-                           std::size_t global_count, DistributedOptions options, DistributedStats* stats) {
+                           std::size_t global_count, const DistributedOptions& options, DistributedStats* stats,
+                           std::int64_t first_query = -1) {
   Rank rank{comm, 0, 1};
   MPI_Comm_rank(comm, &rank.id);
   MPI_Comm_size(comm, &rank.size);
@@ -228,9 +279,7 @@ OwnedRows distributed_rows(MPI_Comm comm, PointView points, const std::vector<st
   if (!everyone_has_all && ids.size() != points.size())
     throw Error("search_distributed: " + std::to_string(points.size()) + " points but " +
                 std::to_string(ids.size()) + " global ids");
-  // With radii the ghosts reach the largest radius of all and carry their own (5 doubles a point).
-  if (rule) options.search.horizon = largest_radius(rank, points, ids, radii, *rule, options.search);
-  const int width = rule ? 5 : 4;
+  const int width = rule ? 5 : 4;  // with radii the ghosts carry their own
   validate_horizon(options.search.horizon, options.search.cells_per_horizon);
   const int dims = points.dims();
   // A periodic box: each rank adds the images of the points it holds (those within the horizon
@@ -272,7 +321,8 @@ OwnedRows distributed_rows(MPI_Comm comm, PointView points, const std::vector<st
     if (options.exchange == Exchange::thesis) {
       for (std::size_t i = 0; i < points.size(); ++i) owned.push_back(pack(points, i, point_ids[i], radius(i)));
       seconds[1] = clock.lap();
-      ghosts = thesis_ghosts(rank, owned, box, dims, global_count, options.search.horizon, width, traffic);
+      ghosts = thesis_ghosts(rank, owned, box, dims, global_count, options.search.horizon, width, first_query,
+                             traffic);
       seconds[2] = clock.lap();
     } else {
       const Decomposition d = decompose(rank, points, global_count, box, options.decomposition, everyone_has_all);
@@ -281,7 +331,7 @@ OwnedRows distributed_rows(MPI_Comm comm, PointView points, const std::vector<st
         for (std::size_t i = 0; i < points.size(); ++i) {
           const Packed p = pack(points, i, point_ids.empty() ? static_cast<std::int64_t>(i) : point_ids[i], radius(i));
           if (d.owner(p.data()) == rank.id) owned.push_back(p);
-          else if (d.box(rank.id).near(p.data(), dims, reach)) ghosts.push_back(p);
+          else if (is_reference(p, first_query) && d.box(rank.id).near(p.data(), dims, reach)) ghosts.push_back(p);
         }
         seconds[1] = clock.lap();
       } else {
@@ -292,12 +342,12 @@ OwnedRows distributed_rows(MPI_Comm comm, PointView points, const std::vector<st
         }
         owned = detail::exchange_all(comm, outgoing, width, traffic);  // migration to owners
         seconds[1] = clock.lap();
-        ghosts = halo_ghosts(rank, owned, d, dims, reach, width, traffic);
+        ghosts = halo_ghosts(rank, owned, d, dims, reach, width, first_query, traffic);
         seconds[2] = clock.lap();
       }
     }
   }
-  OwnedRows out = search_owned(owned, ghosts, dims, options.search, rule);
+  OwnedRows out = search_owned(owned, ghosts, dims, options.search, rule, first_query);
   seconds[3] = clock.lap();
 
   if (stats) {
@@ -328,7 +378,45 @@ OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<
 OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<std::int64_t>& ids,
                              std::span<const double> radii, RadiusRule rule, std::size_t global_count,
                              const DistributedOptions& options, DistributedStats* stats) {
-  return distributed_rows(comm, points, ids, radii, rule, global_count, options, stats);
+  DistributedOptions reach = options;  // the ghosts reach the largest radius of all
+  reach.search.horizon = largest_radius(comm, points, ids, radii, rule, options.search);
+  return distributed_rows(comm, points, ids, radii, rule, global_count, reach, stats);
+}
+
+OwnedRows search_distributed_queries(MPI_Comm comm, PointView queries, const std::vector<std::int64_t>& query_ids,
+                                     std::size_t global_queries, PointView references,
+                                     const std::vector<std::int64_t>& reference_ids, std::size_t global_references,
+                                     const DistributedOptions& options, std::span<const double> radii,
+                                     DistributedStats* stats) {
+  if (options.search.half) throw Error("half lists are about one point set, not queries against references");
+  if (queries.dims() != references.dims())
+    throw Error("queries are " + std::to_string(queries.dims()) + "-D but the references " +
+                std::to_string(references.dims()) + "-D");
+  const bool everyone_has_all = options.exchange == Exchange::overlap;
+  if (!everyone_has_all && (query_ids.size() != queries.size() || reference_ids.size() != references.size()))
+    throw Error("search_distributed_queries: a global id for every point held");
+  DistributedOptions reach = options;
+  if (!radii.empty())
+    reach.search.horizon = largest_radius(comm, queries, query_ids, radii, RadiusRule::gather, options.search, "query");
+  // One point set: the references, then the queries with ids from global_references on.
+  const int dims = queries.dims();
+  PointSet both{dims, std::vector<double>((references.size() + queries.size()) * static_cast<std::size_t>(dims))};
+  std::vector<std::int64_t> ids;
+  std::vector<double> both_radii;
+  const auto first_query = static_cast<std::int64_t>(global_references);
+  for (std::size_t i = 0; i < references.size(); ++i) {
+    for (int a = 0; a < dims; ++a) both.xyz[i * dims + a] = references(i, a);
+    ids.push_back(everyone_has_all ? static_cast<std::int64_t>(i) : reference_ids[i]);
+    if (!radii.empty()) both_radii.push_back(0);  // unused: a row is tested with its query's radius
+  }
+  for (std::size_t q = 0; q < queries.size(); ++q) {
+    for (int a = 0; a < dims; ++a) both.xyz[(references.size() + q) * dims + a] = queries(q, a);
+    ids.push_back(first_query + (everyone_has_all ? static_cast<std::int64_t>(q) : query_ids[q]));
+    if (!radii.empty()) both_radii.push_back(radii[q]);
+  }
+  const std::optional<RadiusRule> rule = radii.empty() ? std::nullopt : std::optional{RadiusRule::gather};
+  return distributed_rows(comm, both.view(), ids, both_radii, rule, global_references + global_queries, reach,
+                          stats, first_query);
 }
 
 bool gather_fits(MPI_Comm comm, std::int64_t entries, const SearchOptions& options, int root) {
