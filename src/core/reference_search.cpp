@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "horizon/buffer.hpp"
 #include "horizon/error.hpp"
 #include "horizon/stopwatch.hpp"
 #include "parallel_scan.hpp"
@@ -39,33 +40,118 @@ void validate_box(PointView points, const SearchOptions& options, const char* wh
     }
 }
 
-void append_images(PointView points, const SearchOptions& options, PointSet& local, std::vector<point_id>& id_of,
-                   point_id id_base) {
-  const int dims = points.dims();
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    double shifts[3][3];  // per axis: 0, then the shifts this point needs
-    int count[3];
-    for (int a = 0; a < 3; ++a) {
-      const double period = options.box[a];
-      shifts[a][0] = 0;
-      count[a] = 1;
-      if (a >= dims || period == 0) continue;
-      // The margin keeps every image whose rounded coordinate could be within the horizon.
-      const double reach = options.horizon + period * 0x1p-40;
-      const double x = points(i, a);
-      if (x < reach) shifts[a][count[a]++] = period;
-      if (x >= period - reach) shifts[a][count[a]++] = -period;
-    }
-    for (int sx = 0; sx < count[0]; ++sx)
-      for (int sy = 0; sy < count[1]; ++sy)
-        for (int sz = 0; sz < count[2]; ++sz) {
-          if (sx == 0 && sy == 0 && sz == 0) continue;
-          const double shift[3] = {shifts[0][sx], shifts[1][sy], shifts[2][sz]};
-          for (int a = 0; a < dims; ++a) local.xyz.push_back(points(i, a) + shift[a]);
-          id_of.push_back(id_base + static_cast<point_id>(i));
+namespace {
+
+/// The shifts of point i's periodic images (each axis: 0, +L near the low face, -L near the
+/// high one; all combinations but the point itself); returns how many, at most 26.
+int image_shifts(PointView points, std::size_t i, const SearchOptions& options, double (*shift)[3]) {
+  double shifts[3][3];  // per axis: 0, then the shifts this point needs
+  int count[3];
+  for (int a = 0; a < 3; ++a) {
+    const double period = options.box[a];
+    shifts[a][0] = 0;
+    count[a] = 1;
+    if (a >= points.dims() || period == 0) continue;
+    // The margin keeps every image whose rounded coordinate could be within the horizon.
+    const double reach = options.horizon + period * 0x1p-40;
+    const double x = points(i, a);
+    if (x < reach) shifts[a][count[a]++] = period;
+    if (x >= period - reach) shifts[a][count[a]++] = -period;
+  }
+  int images = 0;
+  for (int sx = 0; sx < count[0]; ++sx)
+    for (int sy = 0; sy < count[1]; ++sy)
+      for (int sz = 0; sz < count[2]; ++sz)
+        if (sx != 0 || sy != 0 || sz != 0) {
+          if (shift) {
+            shift[images][0] = shifts[0][sx];
+            shift[images][1] = shifts[1][sy];
+            shift[images][2] = shifts[2][sz];
+          }
+          ++images;
         }
+  return images;
+}
+
+}  // namespace
+
+std::vector<std::int64_t> image_offsets(PointView points, const SearchOptions& options) {
+  const auto n = static_cast<std::int64_t>(points.size());
+  std::vector<std::int64_t> first(points.size() + 1, 0);
+#pragma omp parallel for schedule(static) if (n > (1 << 14))
+  for (std::int64_t i = 0; i < n; ++i)
+    first[static_cast<std::size_t>(i) + 1] = image_shifts(points, static_cast<std::size_t>(i), options, nullptr);
+  inclusive_scan(first.data() + 1, points.size(), omp_get_max_threads());
+  return first;
+}
+
+void write_images(PointView points, const SearchOptions& options, const std::vector<std::int64_t>& first,
+                  double* xyz, point_id* id_of, point_id id_base) {
+  const int dims = points.dims();
+  const auto n = static_cast<std::int64_t>(points.size());
+#pragma omp parallel for schedule(static) if (n > (1 << 14))
+  for (std::int64_t i = 0; i < n; ++i) {
+    double shift[26][3];
+    const auto at = static_cast<std::size_t>(first[static_cast<std::size_t>(i)]);
+    const int count = image_shifts(points, static_cast<std::size_t>(i), options, shift);
+    for (int k = 0; k < count; ++k) {
+      for (int a = 0; a < dims; ++a) xyz[(at + k) * dims + a] = points(static_cast<std::size_t>(i), a) + shift[k][a];
+      id_of[at + k] = id_base + static_cast<point_id>(i);
+    }
   }
 }
+
+void append_images(PointView points, const SearchOptions& options, PointSet& local, std::vector<point_id>& id_of,
+                   point_id id_base) {
+  const std::vector<std::int64_t> first = image_offsets(points, options);
+  const std::size_t before = id_of.size(), images = static_cast<std::size_t>(first.back());
+  local.xyz.resize(local.xyz.size() + images * static_cast<std::size_t>(points.dims()));
+  id_of.resize(before + images);
+  write_images(points, options, first, local.xyz.data() + before * static_cast<std::size_t>(points.dims()),
+               id_of.data() + before, id_base);
+}
+
+namespace {
+
+/// Local points written once, in parallel, into storage that is not zeroed first (on a VM each
+/// fresh page costs a fault: filling a vector, then growing it for the images, cost more than
+/// the search): sets of points one after another, then the images of the last set.
+struct LocalPoints {
+  ScratchBuffer<double> xyz;
+  std::vector<point_id> id_of;  ///< the id each local point stands for (-1: none)
+  PointView view(int dims) const { return PointView(xyz.data(), id_of.size(), dims); }
+};
+
+/// `sets` (each with the id of its first point, or -1 for "no id") one after another, then the
+/// periodic images of the last set (ids as that set's) when options.box is periodic.
+LocalPoints local_points(std::initializer_list<std::pair<PointView, point_id>> sets, const SearchOptions& options) {
+  const PointView last = (sets.end() - 1)->first;
+  const int dims = last.dims();
+  const std::vector<std::int64_t> first = is_periodic(options) ? image_offsets(last, options) : std::vector<std::int64_t>{0};
+  std::size_t total = static_cast<std::size_t>(first.back());
+  for (const auto& set : sets) total += set.first.size();
+  if (total >= static_cast<std::size_t>(std::numeric_limits<point_id>::max()))
+    throw Error("the points (queries, references and periodic images) must be fewer than 2^31 - 1");
+  LocalPoints local{ScratchBuffer<double>(total * static_cast<std::size_t>(dims)), std::vector<point_id>(total)};
+  std::size_t at = 0;
+  for (const auto& [points, id] : sets) {
+    const auto n = static_cast<std::int64_t>(points.size());
+    double* const xyz = local.xyz.data() + at * static_cast<std::size_t>(dims);
+    point_id* const ids = local.id_of.data() + at;
+#pragma omp parallel for schedule(static) if (n > (1 << 14))
+    for (std::int64_t i = 0; i < n; ++i) {
+      for (int a = 0; a < dims; ++a) xyz[i * dims + a] = points(static_cast<std::size_t>(i), a);
+      ids[i] = id < 0 ? -1 : id + static_cast<point_id>(i);
+    }
+    at += points.size();
+  }
+  if (is_periodic(options))
+    write_images(last, options, first, local.xyz.data() + at * static_cast<std::size_t>(dims), local.id_of.data() + at,
+                 (sets.end() - 1)->second);
+  return local;
+}
+
+}  // namespace
 
 bool is_periodic(const SearchOptions& options) {
   return options.box[0] > 0 || options.box[1] > 0 || options.box[2] > 0;
@@ -114,14 +200,8 @@ NeighborList search_periodic(PointView points, const SearchOptions& options, Sea
   if (options.queries != 0) throw Error("SearchOptions::queries cannot be combined with a periodic box");
   Stopwatch clock;  // the search's time covers the checks, images and mapping too
   validate_box(points, options, "point");
-  PointSet local{points.dims(), std::vector<double>(points.size() * static_cast<std::size_t>(points.dims()))};
-  copy_points(points, local, 0);
-  std::vector<point_id> id_of(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) id_of[i] = static_cast<point_id>(i);
-  append_images(points, options, local, id_of, 0);
-  if (local.size() >= static_cast<std::size_t>(std::numeric_limits<point_id>::max()))
-    throw Error("box: the points and their periodic images exceed 2^31 - 1");
-  NeighborList list = search_mapped(local.view(), points.size(), id_of, points.size(), options, stats);
+  const LocalPoints local = local_points({{points, 0}}, options);
+  NeighborList list = search_mapped(local.view(points.dims()), points.size(), local.id_of, points.size(), options, stats);
   stats.search_seconds = clock.lap() - stats.grid_seconds;
   return list;
 }
@@ -138,20 +218,11 @@ NeighborList search_references(PointView queries, PointView references, const Se
     validate_box(queries, options, "query point");
     validate_box(references, options, "reference point");
   }
-  const std::size_t total = queries.size() + references.size();
-  if (total >= static_cast<std::size_t>(std::numeric_limits<point_id>::max()))
-    throw Error("queries and references together must be fewer than 2^31 - 1 points");
   // Queries first (rows, dropped as ids), then the references (ids shifted down), then the
   // references' periodic images.
-  PointSet local{queries.dims(), std::vector<double>(total * static_cast<std::size_t>(queries.dims()))};
-  copy_points(queries, local, 0);
-  copy_points(references, local, queries.size());
-  std::vector<point_id> id_of(total, -1);
-  for (std::size_t r = 0; r < references.size(); ++r) id_of[queries.size() + r] = static_cast<point_id>(r);
-  if (is_periodic(options)) append_images(references, options, local, id_of, 0);
-  if (local.size() >= static_cast<std::size_t>(std::numeric_limits<point_id>::max()))
-    throw Error("box: the points and their periodic images exceed 2^31 - 1");
-  NeighborList list = search_mapped(local.view(), queries.size(), id_of, total, options, stats);
+  const LocalPoints local = local_points({{queries, -1}, {references, 0}}, options);
+  NeighborList list = search_mapped(local.view(queries.dims()), queries.size(), local.id_of,
+                                    queries.size() + references.size(), options, stats);
   stats.search_seconds = clock.lap() - stats.grid_seconds;
   return list;
 }

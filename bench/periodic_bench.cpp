@@ -1,0 +1,39 @@
+// horizon_periodic_bench: what a periodic box costs a repeated search (a solver's every step):
+// the lattice filling [0, 10)^3 searched open and with every axis periodic, in one process, on
+// one core and on all; CSV with the ratio. (periodic_cost.sh measures first calls via the CLI.)
+#include <CLI/CLI.hpp>
+#include <omp.h>
+
+#include <cstdio>
+
+#include "horizon/generate.hpp"
+#include "horizon/search.hpp"
+#include "median_seconds.hpp"
+
+using namespace horizon;
+
+int main(int argc, char** argv) {
+  CLI::App app{"horizon_periodic_bench: a periodic box against the open one, as CSV"};
+  int n = 100, reps = 5;
+  app.add_option("--n", n, "lattice points per side");
+  app.add_option("--reps", reps, "repetitions (the median is reported)");
+  CLI11_PARSE(app, argc, argv);
+  std::printf("# %d hardware threads; lattice %d in [0, 10)^3; box 10,10,10 against open; median of %d\n",
+              omp_get_max_threads(), n, reps);
+  std::printf("m,threads,open_entries,periodic_entries,open_s,periodic_s,periodic_over_open\n");
+  const PointSet points = lattice(n, 3);
+  for (double m : {1.5, 3.015})
+    for (int threads : {1, omp_get_max_threads()}) {
+      SearchOptions open;
+      open.horizon = m * 10.0 / n;
+      open.backend = threads == 1 ? Backend::serial : Backend::openmp;
+      open.threads = threads;
+      SearchOptions periodic = open;
+      periodic.box = {10, 10, 10};
+      std::int64_t open_entries = 0, periodic_entries = 0;
+      const double open_s = median_seconds(reps, [&] { open_entries = search(points.view(), open).total(); });
+      const double periodic_s = median_seconds(reps, [&] { periodic_entries = search(points.view(), periodic).total(); });
+      std::printf("%g,%d,%lld,%lld,%.4f,%.4f,%.2f\n", m, threads, static_cast<long long>(open_entries),
+                  static_cast<long long>(periodic_entries), open_s, periodic_s, periodic_s / open_s);
+    }
+}
