@@ -73,8 +73,9 @@ void run_distributed(const SearchArgs& args) {
   if (!args.blocks.empty()) all.blocks = read_blocks(args.blocks, all.size());
   const PointSet queries = args.queries.empty() ? PointSet{} : load_input(args.queries);
   const PointSet& row_points = args.queries.empty() ? all : queries;  // the rows
-  const std::vector<double> radii = args.radii.empty() ? std::vector<double>{}
-                                    : read_radii(args.radii, row_points.size(), args.queries.empty() ? "points" : "queries");
+  const std::vector<double> radii =
+      args.radii.empty() ? std::vector<double>{}
+                         : read_radii(args.radii, row_points.size(), args.queries.empty() ? "points" : "queries");
   const RadiusRule radius_rule = parse_radius_rule(args.radius_rule);
   if (!radii.empty() && !args.queries.empty() && radius_rule != RadiusRule::gather)
     throw Error(std::string("--radii with --queries: only --radius-rule gather (each query's own radius), not ") +
@@ -111,7 +112,8 @@ void run_distributed(const SearchArgs& args) {
                              set.xyz.begin() + static_cast<std::ptrdiff_t>(last * set.dims)}};
     for (std::size_t i = first; i < last; ++i) ids.push_back(static_cast<std::int64_t>(i));
     if (!values.empty())
-      held_values.assign(values.begin() + static_cast<std::ptrdiff_t>(first), values.begin() + static_cast<std::ptrdiff_t>(last));
+      held_values.assign(values.begin() + static_cast<std::ptrdiff_t>(first),
+                         values.begin() + static_cast<std::ptrdiff_t>(last));
     return held;
   };
   std::vector<std::int64_t> ids, reference_ids;
@@ -125,8 +127,9 @@ void run_distributed(const SearchArgs& args) {
     rows = search_distributed_queries(MPI_COMM_WORLD, held.view(), ids, n, held_references.view(), reference_ids,
                                       all.size(), options, held_radii, &stats);
   } else {
-    rows = radii.empty() ? search_distributed(MPI_COMM_WORLD, held.view(), ids, n, options, &stats)
-                         : search_distributed(MPI_COMM_WORLD, held.view(), ids, held_radii, radius_rule, n, options, &stats);
+    rows = radii.empty()
+               ? search_distributed(MPI_COMM_WORLD, held.view(), ids, n, options, &stats)
+               : search_distributed(MPI_COMM_WORLD, held.view(), ids, held_radii, radius_rule, n, options, &stats);
   }
   clock.lap();
   // Rows travel to rank 0 only when there is a file to write.

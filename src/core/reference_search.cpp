@@ -127,7 +127,8 @@ struct LocalPoints {
 LocalPoints local_points(std::initializer_list<std::pair<PointView, point_id>> sets, const SearchOptions& options) {
   const PointView last = (sets.end() - 1)->first;
   const int dims = last.dims();
-  const std::vector<std::int64_t> first = is_periodic(options) ? image_offsets(last, options) : std::vector<std::int64_t>{0};
+  const std::vector<std::int64_t> first =
+      is_periodic(options) ? image_offsets(last, options) : std::vector<std::int64_t>{0};
   std::size_t total = static_cast<std::size_t>(first.back());
   for (const auto& set : sets) total += set.first.size();
   if (total >= static_cast<std::size_t>(std::numeric_limits<point_id>::max()))

@@ -164,7 +164,8 @@ std::vector<Packed> halo_ghosts(const Rank& rank, const std::vector<Packed>& own
 // owned references and the ghosts, in global query and reference ids.
 OwnedRows query_rows(const std::vector<Packed>& owned, const std::vector<Packed>& ghosts, int dims,
                      const SearchOptions& options, bool with_radii, std::int64_t first_query) {
-  const auto queries_from = std::find_if(owned.begin(), owned.end(), [&](const Packed& p) { return !is_reference(p, first_query); });
+  const auto queries_from =
+      std::find_if(owned.begin(), owned.end(), [&](const Packed& p) { return !is_reference(p, first_query); });
   PointSet queries{dims, {}}, references{dims, {}};
   std::vector<double> radii;
   std::vector<point_id> global;
@@ -246,7 +247,8 @@ double largest_radius(MPI_Comm comm, PointView points, const std::vector<std::in
                       std::span<const double> radii, RadiusRule rule, const SearchOptions& options,
                       const std::string& what = "point") {
   if (radii.size() != points.size())
-    throw Error("radii: " + std::to_string(radii.size()) + " radii for " + std::to_string(points.size()) + " " + what + "s");
+    throw Error("radii: " + std::to_string(radii.size()) + " radii for " + std::to_string(points.size()) + " " +
+                what + "s");
   double mine = 0, largest = 0;
   for (std::size_t i = 0; i < radii.size(); ++i) {
     if (!(std::isfinite(radii[i]) && radii[i] > 0))
