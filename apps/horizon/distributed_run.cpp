@@ -98,32 +98,30 @@ void run_distributed(const SearchArgs& args) {
   options.exchange = parse_exchange(args.exchange.empty() ? "halo" : args.exchange);
   options.decomposition = args.decomposition == "brick" ? Decomposition::Kind::brick : Decomposition::Kind::rcb;
   const std::size_t n = row_points.size();
-  // This rank's block of a point set (and of its radii): ids and values; everything with overlap.
-  const auto block = [&](const PointSet& set, std::vector<std::int64_t>& ids, const std::vector<double>& values,
-                         std::vector<double>& held_values) {
-    if (options.exchange == Exchange::overlap) {
-      held_values = values;
-      return set;
-    }
-    const std::size_t count = set.size();
-    const std::size_t first = count * static_cast<std::size_t>(rank) / static_cast<std::size_t>(size);
-    const std::size_t last = count * static_cast<std::size_t>(rank + 1) / static_cast<std::size_t>(size);
-    PointSet held{set.dims, {set.xyz.begin() + static_cast<std::ptrdiff_t>(first * set.dims),
-                             set.xyz.begin() + static_cast<std::ptrdiff_t>(last * set.dims)}};
-    for (std::size_t i = first; i < last; ++i) ids.push_back(static_cast<std::int64_t>(i));
-    if (!values.empty())
-      held_values.assign(values.begin() + static_cast<std::ptrdiff_t>(first),
-                         values.begin() + static_cast<std::ptrdiff_t>(last));
-    return held;
+  // This rank's share [first, last) of `count` points: a block of the input, or all (overlap).
+  const bool overlap = options.exchange == Exchange::overlap;
+  const auto share = [&](std::size_t count) {
+    const auto r = static_cast<std::size_t>(rank), p = static_cast<std::size_t>(size);
+    return overlap ? std::pair<std::size_t, std::size_t>{0, count} : std::pair{count * r / p, count * (r + 1) / p};
+  };
+  // The points of this rank's share, and their global ids (none with overlap: all are held).
+  const auto held_part = [&](const PointSet& set, std::vector<std::int64_t>& ids) {
+    const auto [first, last] = share(set.size());
+    if (!overlap)
+      for (std::size_t i = first; i < last; ++i) ids.push_back(static_cast<std::int64_t>(i));
+    return PointSet{set.dims, {set.xyz.begin() + static_cast<std::ptrdiff_t>(first * set.dims),
+                               set.xyz.begin() + static_cast<std::ptrdiff_t>(last * set.dims)}};
   };
   std::vector<std::int64_t> ids, reference_ids;
-  std::vector<double> held_radii, no_radii, unused;
-  const PointSet held = block(row_points, ids, radii, held_radii);
+  const PointSet held = held_part(row_points, ids);
+  const auto [first_radius, last_radius] = share(radii.size());
+  const std::vector<double> held_radii(radii.begin() + static_cast<std::ptrdiff_t>(first_radius),
+                                       radii.begin() + static_cast<std::ptrdiff_t>(last_radius));
   progress.say("searching " + std::to_string(n) + " points on " + std::to_string(size) + " ranks");
   DistributedStats stats;
   OwnedRows rows;
   if (!args.queries.empty()) {
-    const PointSet held_references = block(all, reference_ids, no_radii, unused);
+    const PointSet held_references = held_part(all, reference_ids);
     rows = search_distributed_queries(MPI_COMM_WORLD, held.view(), ids, n, held_references.view(), reference_ids,
                                       all.size(), options, held_radii, &stats);
   } else {

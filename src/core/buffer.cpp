@@ -1,13 +1,13 @@
 #include "horizon/buffer.hpp"
 
-#include "parallel_copy.hpp"
-
 #include <algorithm>
 #include <mutex>
 #include <utility>
 
 #include <malloc.h>
 #include <unistd.h>
+
+#include "parallel_copy.hpp"
 
 namespace horizon::detail {
 

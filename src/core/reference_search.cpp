@@ -73,8 +73,7 @@ int image_shifts(PointView points, std::size_t i, const SearchOptions& options, 
   return images;
 }
 
-}  // namespace
-
+/// The images append_images writes, as offsets: point i's from first[i] to first[i + 1].
 std::vector<std::int64_t> image_offsets(PointView points, const SearchOptions& options) {
   const auto n = static_cast<std::int64_t>(points.size());
   std::vector<std::int64_t> first(points.size() + 1, 0);
@@ -85,6 +84,8 @@ std::vector<std::int64_t> image_offsets(PointView points, const SearchOptions& o
   return first;
 }
 
+/// Writes the images of image_offsets at `xyz` and their originals' indices (+ `id_base`) at
+/// `id_of`, in parallel.
 void write_images(PointView points, const SearchOptions& options, const std::vector<std::int64_t>& first,
                   double* xyz, point_id* id_of, point_id id_base) {
   const int dims = points.dims();
@@ -100,6 +101,8 @@ void write_images(PointView points, const SearchOptions& options, const std::vec
     }
   }
 }
+
+}  // namespace
 
 void append_images(PointView points, const SearchOptions& options, PointSet& local, std::vector<point_id>& id_of,
                    point_id id_base) {

@@ -34,14 +34,6 @@ void validate_box(PointView points, const SearchOptions& options, const char* wh
 void append_images(PointView points, const SearchOptions& options, PointSet& local, std::vector<point_id>& id_of,
                    point_id id_base);
 
-/// The images append_images writes, as offsets: point i's from first[i] to first[i + 1].
-std::vector<std::int64_t> image_offsets(PointView points, const SearchOptions& options);
-
-/// Writes the images of image_offsets at `xyz` and their originals' indices (+ `id_base`) at
-/// `id_of`, in parallel.
-void write_images(PointView points, const SearchOptions& options, const std::vector<std::int64_t>& first,
-                  double* xyz, point_id* id_of, point_id id_base);
-
 /// Whether options.box makes any axis periodic.
 bool is_periodic(const SearchOptions& options);
 

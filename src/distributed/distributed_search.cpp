@@ -175,14 +175,13 @@ OwnedRows query_rows(const std::vector<Packed>& owned, const std::vector<Packed>
     out.ids.push_back(static_cast<std::int64_t>((*p)[3]) - first_query);
     radii.push_back((*p)[4]);
   }
-  for (auto p = owned.begin(); p != queries_from; ++p) global.push_back(static_cast<point_id>((*p)[3]));
-  const std::size_t owned_references = global.size();
-  for (const Packed& p : ghosts)
-    if (is_reference(p, first_query)) global.push_back(static_cast<point_id>(p[3]));
+  const auto owned_references = static_cast<std::size_t>(queries_from - owned.begin());
   for (const std::vector<Packed>* set : std::initializer_list<const std::vector<Packed>*>{&owned, &ghosts})
     for (const Packed& p : *set)
-      if (is_reference(p, first_query))
+      if (is_reference(p, first_query)) {
         for (int a = 0; a < dims; ++a) references.xyz.push_back(p[static_cast<std::size_t>(a)]);
+        global.push_back(static_cast<point_id>(p[3]));
+      }
   SearchOptions local_options = options;
   local_options.box = {0, 0, 0};  // the images are among the ghosts
   if (out.ids.empty()) {
