@@ -1,4 +1,4 @@
-// The list storage's cache of large freed blocks.
+// The pools of large freed blocks: lists, and a search's working arrays.
 #include "horizon/buffer.hpp"
 
 #include <gtest/gtest.h>
@@ -41,6 +41,28 @@ TEST(Buffer, ReusesLargeFreedBlocksForListsOfAboutTheirSize) {
   }
   EXPECT_GE(detail::cached_buffer_bytes(), 280 * mib);
   EXPECT_LT(detail::cached_buffer_bytes(), 320 * mib);
+  release_cached_buffers();
+  EXPECT_EQ(detail::cached_buffer_bytes(), 0u);
+}
+
+TEST(Buffer, ReusesAFreedWorkingArrayForTheNextSearchsArrays) {
+  release_cached_buffers();
+  const double* first = nullptr;
+  {
+    ScratchBuffer<double> coords(mib);  // 8 MB: a cell index's coordinates along one axis
+    coords.back() = 1;
+    first = coords.data();
+  }
+  EXPECT_GE(detail::cached_buffer_bytes(), 8 * mib);
+  {
+    ScratchBuffer<double> again(mib + 1000);  // the next search's, a little longer
+    EXPECT_EQ(again.data(), first);
+    ScratchBuffer<double> other(mib);  // no second block held: a fresh one
+    EXPECT_NE(other.data(), first);
+    ScratchBuffer<char> small(mib / 2);  // below 1 MB: never kept
+  }
+  EXPECT_GE(detail::cached_buffer_bytes(), 16 * mib);
+  EXPECT_LT(detail::cached_buffer_bytes(), 18 * mib);
   release_cached_buffers();
   EXPECT_EQ(detail::cached_buffer_bytes(), 0u);
 }

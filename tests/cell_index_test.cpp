@@ -1,4 +1,5 @@
-// The cell sort: the same index on any thread count, each cell's points ascending by input id.
+// The cell sort: the same index on any thread count, each cell's points ascending by input id;
+// periodic images after the rows of their cell, named by their originals.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -35,6 +36,36 @@ TEST(CellIndex, AnyThreadCountGivesTheSerialSortStableById) {
         }
         for (const int threads : {2, 3, 7}) expect_same_index(serial, CellIndex(data.points.view(), grid, threads));
       }
+}
+
+TEST(CellIndex, ImagesHoldNoRowAndCarryTheirOriginalsIds) {
+  // Points 0..5 on a line, then images of points 1, 4 and 0 (standing anywhere), on any thread count.
+  const std::vector<double> xyz = {0.1, 0, 0.5, 0, 0.9, 0, 1.3, 0, 2.2, 0, 2.6, 0, -0.4, 0, 2.95, 0, 0.05, 0};
+  const PointView points(xyz.data(), 9, 2);
+  const std::vector<point_id> image_of = {1, 4, 0};
+  const Grid grid = Grid::fit(points, 1.0, 1);
+  for (const int threads : {1, 3}) {
+    const CellIndex index(points, grid, threads, image_of);
+    EXPECT_EQ(index.point_count(), 9u);
+    EXPECT_EQ(index.row_count(), 6u);
+    std::vector<point_id> rows, images;
+    for (std::size_t c = 0; c < index.occupied_cells(); ++c) {
+      const auto [first, last] = index.points_of(c);
+      const auto rows_end = index.rows_of(c).end;
+      for (std::int64_t p = first; p < last; ++p) {
+        const point_id id = index.order()[static_cast<std::size_t>(p)];
+        (p < rows_end ? rows : images).push_back(id);
+        // Each slot keeps its own coordinates: an image's are not its original's.
+        const std::size_t local = p < rows_end ? static_cast<std::size_t>(id)
+                                               : 6 + static_cast<std::size_t>(std::find(image_of.begin(), image_of.end(), id) - image_of.begin());
+        EXPECT_EQ(index.coords(0)[static_cast<std::size_t>(p)], xyz[2 * local]);
+      }
+    }
+    std::sort(rows.begin(), rows.end());
+    std::sort(images.begin(), images.end());
+    EXPECT_EQ(rows, (std::vector<point_id>{0, 1, 2, 3, 4, 5}));
+    EXPECT_EQ(images, (std::vector<point_id>{0, 1, 4}));
+  }
 }
 
 TEST(RadixSort, SortsByTheHighWordKeepingTheLowWordsOrder) {

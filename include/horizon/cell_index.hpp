@@ -5,6 +5,7 @@
 /// their first sorted position, and a lookup from a row of cells to its run of sorted positions.
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "horizon/buffer.hpp"
@@ -25,10 +26,14 @@ public:
   static constexpr std::size_t padding = 16;
 
   /// Sorts `points` into the cells of `grid` on `threads` threads (same result for any count).
-  CellIndex(PointView points, const Grid& grid, int threads = 1);
+  /// The last image_of.size() points are periodic images: they hold no row, and their id in
+  /// order() is that of the point image_of[k] they copy, so families name it directly.
+  CellIndex(PointView points, const Grid& grid, int threads = 1, std::span<const point_id> image_of = {});
 
   const Grid& grid() const { return grid_; }
   std::size_t point_count() const { return count_; }
+  /// The points that hold rows: all but the images.
+  std::size_t row_count() const { return rows_; }
   std::size_t occupied_cells() const { return cell_begin_.empty() ? 0 : cell_begin_.size() - 1; }
 
   /// Input id of the point at sorted position p.
@@ -37,6 +42,10 @@ public:
   const ScratchBuffer<double>& coords(int axis) const { return sorted_[axis]; }
   /// Sorted positions of the points in occupied cell c.
   Range points_of(std::size_t c) const { return {cell_begin_[c], cell_begin_[c + 1]}; }
+  /// The first of them, those that hold rows (the cell's images sort after them).
+  Range rows_of(std::size_t c) const {
+    return {cell_begin_[c], cell_rows_end_.empty() ? cell_begin_[c + 1] : cell_rows_end_[c]};
+  }
 
   /// The stencil of occupied cell c: for each row of cells (cy+dy, cz+dz), |dy|,|dz| <= k, the
   /// run of sorted positions of cells cx-k .. cx+k, which are adjacent in the sort. Empty rows
@@ -54,11 +63,12 @@ private:
   void sort_sparse(PointView points);
 
   Grid grid_;
-  std::size_t count_ = 0;
+  std::size_t count_ = 0, rows_ = 0;
   ScratchBuffer<point_id> order_;
   std::array<ScratchBuffer<double>, 3> sorted_;
-  std::vector<std::int64_t> cell_begin_;  ///< occupied cell -> first sorted position (+ end)
-  std::vector<std::array<std::int64_t, 3>> cell_coord_;  ///< occupied cell -> (cx, cy, cz)
+  ScratchBuffer<std::int64_t> cell_begin_;  ///< occupied cell -> first sorted position (+ end)
+  ScratchBuffer<std::int64_t> cell_rows_end_;  ///< with images: occupied cell -> end of its rows
+  ScratchBuffer<std::array<std::int64_t, 3>> cell_coord_;  ///< occupied cell -> (cx, cy, cz)
   ScratchBuffer<std::int64_t> start_by_id_;  ///< dense only: linear cell id -> first position
 };
 

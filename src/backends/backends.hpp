@@ -1,5 +1,7 @@
 #pragma once
 // The backends behind horizon::search(). Each receives validated, non-empty points.
+#include <span>
+
 #include "horizon/search.hpp"
 
 namespace horizon::detail {
@@ -7,8 +9,12 @@ namespace horizon::detail {
 /// What search(points, options) checks before it picks a backend: Error otherwise.
 void validate_search(PointView points, const SearchOptions& options);
 
-NeighborList search_serial(PointView points, const SearchOptions& options, SearchStats& stats);
-NeighborList search_openmp(PointView points, const SearchOptions& options, SearchStats& stats);
+/// The CPU backends. The last image_of.size() points may be periodic images (CellIndex): the
+/// rows are those of the other points, the images found as the points they copy.
+NeighborList search_serial(PointView points, const SearchOptions& options, SearchStats& stats,
+                           std::span<const point_id> image_of = {});
+NeighborList search_openmp(PointView points, const SearchOptions& options, SearchStats& stats,
+                           std::span<const point_id> image_of = {});
 bool openmp_built();
 /// Defined in cuda/ when built with CUDA; otherwise throws.
 NeighborList search_cuda(PointView points, const SearchOptions& options, SearchStats& stats);

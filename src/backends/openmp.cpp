@@ -11,10 +11,12 @@ namespace horizon::detail {
 
 bool openmp_built() { return true; }
 
-NeighborList search_openmp(PointView points, const SearchOptions& options, SearchStats& stats) {
+NeighborList search_openmp(PointView points, const SearchOptions& options, SearchStats& stats,
+                           std::span<const point_id> image_of) {
   const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
   Stopwatch clock;
-  const CellIndex index(points, Grid::fit(points, options.horizon, options.cells_per_horizon, threads), threads);
+  const CellIndex index(points, Grid::fit(points, options.horizon, options.cells_per_horizon, threads), threads,
+                        image_of);
   stats.grid_seconds = clock.lap();
 
   NeighborList list = search_families(index, options, threads);

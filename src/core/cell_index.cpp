@@ -19,8 +19,8 @@ std::array<std::int64_t, 3> cell_of_point(PointView points, const Grid& grid, st
 
 }  // namespace
 
-CellIndex::CellIndex(PointView points, const Grid& grid, int threads)
-    : grid_(grid), count_(points.size()) {
+CellIndex::CellIndex(PointView points, const Grid& grid, int threads, std::span<const point_id> image_of)
+    : grid_(grid), count_(points.size()), rows_(points.size() - image_of.size()) {
   // Written in full below; only the padding is set here (zeroing first cost a serial pass).
   order_.resize(count_ + padding);
   std::fill(order_.begin() + static_cast<std::ptrdiff_t>(count_), order_.end(), -1);
@@ -35,10 +35,32 @@ CellIndex::CellIndex(PointView points, const Grid& grid, int threads)
     axis.resize(count_ + padding);
     std::fill(axis.begin() + static_cast<std::ptrdiff_t>(count_), axis.end(), std::numeric_limits<double>::quiet_NaN());
   }
+  if (image_of.empty()) {
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-  for (std::int64_t p = 0; p < n; ++p)
+    for (std::int64_t p = 0; p < n; ++p)
+      for (int a = 0; a < 3; ++a)
+        sorted_[a][static_cast<std::size_t>(p)] = a < grid_.dims ? points(static_cast<std::size_t>(order_[p]), a) : 0.0;
+    return;
+  }
+
+  // Images: a cell's rows end at its first image (the sort is stable, images come last), and
+  // each image takes the id of the point it copies.
+  const auto cells = static_cast<std::int64_t>(occupied_cells());
+  const auto rows = static_cast<point_id>(rows_);
+  cell_rows_end_.resize(static_cast<std::size_t>(cells));
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+  for (std::int64_t c = 0; c < cells; ++c) {
+    const point_id* first = order_.data() + cell_begin_[c];
+    const point_id* last = order_.data() + cell_begin_[c + 1];
+    cell_rows_end_[c] = std::lower_bound(first, last, rows) - order_.data();
+  }
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+  for (std::int64_t p = 0; p < n; ++p) {
+    const point_id i = order_[p];
     for (int a = 0; a < 3; ++a)
-      sorted_[a][static_cast<std::size_t>(p)] = a < grid_.dims ? points(static_cast<std::size_t>(order_[p]), a) : 0.0;
+      sorted_[a][static_cast<std::size_t>(p)] = a < grid_.dims ? points(static_cast<std::size_t>(i), a) : 0.0;
+    if (i >= rows) order_[p] = image_of[static_cast<std::size_t>(i - rows)];
+  }
 }
 
 // Points by linear cell id, stable, so a cell's points are ascending by input id whatever the
@@ -71,7 +93,7 @@ void CellIndex::sort_dense(PointView points, int threads) {
     std::fill(start_by_id_.begin(), start_by_id_.end(), 0);
     for (std::int64_t i = 0; i < n; ++i) ++start[(id[i] = cell_id(i)) + 1];
     detail::inclusive_scan(start, start_by_id_.size(), 1);
-    std::vector<std::int64_t> next(start_by_id_.begin(), start_by_id_.end() - 1);
+    ScratchBuffer<std::int64_t> next(start_by_id_.begin(), start_by_id_.end() - 1);
     for (std::int64_t i = 0; i < n; ++i) order_[next[id[i]]++] = static_cast<point_id>(i);
   }
 

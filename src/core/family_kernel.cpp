@@ -130,7 +130,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
   const double *x = index.coords(0).data(), *y = index.coords(1).data(), *z = index.coords(2).data();
   const point_id* order = index.order().data();
   std::int64_t* offsets = pass.offsets;
-  const std::size_t queries = options.queries ? options.queries : index.point_count();
+  const std::size_t queries = options.queries ? options.queries : index.row_count();
   const auto points = static_cast<std::int64_t>(index.point_count());
   const double limit = metric_threshold(M, options.horizon);
   const auto threshold = hn::Set(d, limit);
@@ -143,18 +143,18 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
 
   // A batch of rows (FamilyPass::rows_begin..rows_end) fills only the cells holding one of its points.
   const point_id rows_begin = pass.rows_begin, rows_end = pass.rows_end;
-  const bool all_rows = rows_begin == 0 && static_cast<std::size_t>(rows_end) >= index.point_count();
+  const bool all_rows = rows_begin == 0 && static_cast<std::size_t>(rows_end) >= index.row_count();
   auto in_batch = [&](point_id id) { return id >= rows_begin && id < rows_end; };
   const std::int64_t base = pass.indices_base;
 
   for (std::size_t c = run.first; c < run.last; ++c) {
     if constexpr (Fill)
       if (!all_rows) {
-        const auto [first, last] = index.points_of(c);
+        const auto [first, last] = index.rows_of(c);
         if (std::none_of(order + first, order + last, in_batch)) continue;
       }
     if (pass.row_radius) {  // per-point radii: only the cells holding a point with a row here
-      const auto [first, last] = index.points_of(c);
+      const auto [first, last] = index.rows_of(c);
       if (std::none_of(order + first, order + last, [&](point_id i) { return pass.row_radius[i] > 0; })) continue;
     }
     const int row_count = index.stencil(c, rows.data());
@@ -168,7 +168,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
     // 80 candidates, 18 neighbours) sort faster one by one, in registers.
     const bool sorted_stencil = Fill && options.sort_rows && candidates >= 256;
     if (sorted_stencil) sorted.gather(index, rows.data(), row_count);
-    const auto [first, last] = index.points_of(c);
+    const auto [first, last] = index.rows_of(c);
     for (std::int64_t p = first; p < last; ++p) {
       const point_id self = order[p];
       // Rows are placed by input id: for input in random order every point's row (and its

@@ -37,7 +37,7 @@ namespace {
 /// Row offsets of every point: the count pass over `runs`, scanned.
 Buffer<std::int64_t> count_rows(FamilyPass& pass, const std::vector<CellRun>& runs, int threads) {
   const auto run_count = static_cast<std::int64_t>(runs.size());
-  Buffer<std::int64_t> offsets(pass.index->point_count() + 1);
+  Buffer<std::int64_t> offsets(pass.index->row_count() + 1);
   std::memset(offsets.data(), 0, offsets.size() * sizeof(std::int64_t));
   pass.offsets = offsets.data();
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
@@ -71,7 +71,7 @@ void search_families_in_batches(const CellIndex& index, const SearchOptions& opt
                                 std::int64_t batch_entries,
                                 const std::function<void(const std::int64_t* offsets)>& begin,
                                 const std::function<void(std::size_t first, std::size_t last, const point_id* ids)>& rows) {
-  const std::size_t n = index.point_count();
+  const std::size_t n = index.row_count();
   const std::vector<CellRun> runs = split_into_runs(index, threads);
   FamilyPass pass{&index, &options};
   const Buffer<std::int64_t> offsets = count_rows(pass, runs, threads);

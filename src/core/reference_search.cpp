@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "../backends/backends.hpp"
 #include "horizon/buffer.hpp"
 #include "horizon/error.hpp"
 #include "horizon/stopwatch.hpp"
@@ -74,9 +75,10 @@ int image_shifts(PointView points, std::size_t i, const SearchOptions& options, 
 }
 
 /// The images append_images writes, as offsets: point i's from first[i] to first[i + 1].
-std::vector<std::int64_t> image_offsets(PointView points, const SearchOptions& options) {
+ScratchBuffer<std::int64_t> image_offsets(PointView points, const SearchOptions& options) {
   const auto n = static_cast<std::int64_t>(points.size());
-  std::vector<std::int64_t> first(points.size() + 1, 0);
+  ScratchBuffer<std::int64_t> first(points.size() + 1);
+  first[0] = 0;
 #pragma omp parallel for schedule(static) if (n > (1 << 14))
   for (std::int64_t i = 0; i < n; ++i)
     first[static_cast<std::size_t>(i) + 1] = image_shifts(points, static_cast<std::size_t>(i), options, nullptr);
@@ -86,7 +88,7 @@ std::vector<std::int64_t> image_offsets(PointView points, const SearchOptions& o
 
 /// Writes the images of image_offsets at `xyz` and their originals' indices (+ `id_base`) at
 /// `id_of`, in parallel.
-void write_images(PointView points, const SearchOptions& options, const std::vector<std::int64_t>& first,
+void write_images(PointView points, const SearchOptions& options, const ScratchBuffer<std::int64_t>& first,
                   double* xyz, point_id* id_of, point_id id_base) {
   const int dims = points.dims();
   const auto n = static_cast<std::int64_t>(points.size());
@@ -106,7 +108,7 @@ void write_images(PointView points, const SearchOptions& options, const std::vec
 
 void append_images(PointView points, const SearchOptions& options, PointSet& local, std::vector<point_id>& id_of,
                    point_id id_base) {
-  const std::vector<std::int64_t> first = image_offsets(points, options);
+  const ScratchBuffer<std::int64_t> first = image_offsets(points, options);
   const std::size_t before = id_of.size(), images = static_cast<std::size_t>(first.back());
   local.xyz.resize(local.xyz.size() + images * static_cast<std::size_t>(points.dims()));
   id_of.resize(before + images);
@@ -121,7 +123,7 @@ namespace {
 /// the search): sets of points one after another, then the images of the last set.
 struct LocalPoints {
   ScratchBuffer<double> xyz;
-  std::vector<point_id> id_of;  ///< the id each local point stands for (-1: none)
+  ScratchBuffer<point_id> id_of;  ///< the id each local point stands for (-1: none)
   PointView view(int dims) const { return PointView(xyz.data(), id_of.size(), dims); }
 };
 
@@ -130,13 +132,13 @@ struct LocalPoints {
 LocalPoints local_points(std::initializer_list<std::pair<PointView, point_id>> sets, const SearchOptions& options) {
   const PointView last = (sets.end() - 1)->first;
   const int dims = last.dims();
-  const std::vector<std::int64_t> first =
-      is_periodic(options) ? image_offsets(last, options) : std::vector<std::int64_t>{0};
+  const ScratchBuffer<std::int64_t> first =
+      is_periodic(options) ? image_offsets(last, options) : ScratchBuffer<std::int64_t>{0};
   std::size_t total = static_cast<std::size_t>(first.back());
   for (const auto& set : sets) total += set.first.size();
   if (total >= static_cast<std::size_t>(std::numeric_limits<point_id>::max()))
     throw Error("the points (queries, references and periodic images) must be fewer than 2^31 - 1");
-  LocalPoints local{ScratchBuffer<double>(total * static_cast<std::size_t>(dims)), std::vector<point_id>(total)};
+  LocalPoints local{ScratchBuffer<double>(total * static_cast<std::size_t>(dims)), ScratchBuffer<point_id>(total)};
   std::size_t at = 0;
   for (const auto& [points, id] : sets) {
     const auto n = static_cast<std::int64_t>(points.size());
@@ -161,7 +163,7 @@ bool is_periodic(const SearchOptions& options) {
   return options.box[0] > 0 || options.box[1] > 0 || options.box[2] > 0;
 }
 
-NeighborList search_mapped(PointView local, std::size_t queries, const std::vector<point_id>& id_of,
+NeighborList search_mapped(PointView local, std::size_t queries, const point_id* id_of,
                            std::size_t ascending_below, const SearchOptions& options, SearchStats& stats) {
   if (queries == 0) return NeighborList({0}, {}, options.half);
   SearchOptions inner = options;
@@ -200,12 +202,24 @@ NeighborList search_mapped(PointView local, std::size_t queries, const std::vect
   return NeighborList(std::move(offsets), std::move(indices), options.half);
 }
 
-NeighborList search_periodic(PointView points, const SearchOptions& options, SearchStats& stats) {
+NeighborList search_periodic(PointView points, Backend backend, const SearchOptions& options, SearchStats& stats) {
   if (options.queries != 0) throw Error("SearchOptions::queries cannot be combined with a periodic box");
-  Stopwatch clock;  // the search's time covers the checks, images and mapping too
+  Stopwatch clock;  // the grid's time covers the checks and images too
   validate_box(points, options, "point");
+  if (points.empty()) return NeighborList({0}, {}, options.half);
   const LocalPoints local = local_points({{points, 0}}, options);
-  NeighborList list = search_mapped(local.view(points.dims()), points.size(), local.id_of, points.size(), options, stats);
+  if (backend == Backend::serial || backend == Backend::openmp) {
+    // The CPU backends name each image by its original as they find it: the rows come out final.
+    const double images_seconds = clock.lap();
+    SearchOptions inner = options;
+    inner.box = {0, 0, 0};
+    const std::span<const point_id> image_of(local.id_of.data() + points.size(), local.id_of.size() - points.size());
+    NeighborList list = backend == Backend::serial ? search_serial(local.view(points.dims()), inner, stats, image_of)
+                                                   : search_openmp(local.view(points.dims()), inner, stats, image_of);
+    stats.grid_seconds += images_seconds;
+    return list;
+  }
+  NeighborList list = search_mapped(local.view(points.dims()), points.size(), local.id_of.data(), points.size(), options, stats);
   stats.search_seconds = clock.lap() - stats.grid_seconds;
   return list;
 }
@@ -225,7 +239,7 @@ NeighborList search_references(PointView queries, PointView references, const Se
   // Queries first (rows, dropped as ids), then the references (ids shifted down), then the
   // references' periodic images.
   const LocalPoints local = local_points({{queries, -1}, {references, 0}}, options);
-  NeighborList list = search_mapped(local.view(queries.dims()), queries.size(), local.id_of,
+  NeighborList list = search_mapped(local.view(queries.dims()), queries.size(), local.id_of.data(),
                                     queries.size() + references.size(), options, stats);
   stats.search_seconds = clock.lap() - stats.grid_seconds;
   return list;

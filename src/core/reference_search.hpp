@@ -13,11 +13,12 @@ namespace horizon::detail {
 /// The rows of the first `queries` points of `local` searched with `options` (its box ignored),
 /// each id j mapped to id_of[j] (dropped when < 0; half lists keep id_of[j] > i). Ids j below
 /// `ascending_below` map in ascending order; the rest are sorted and merged in (sort_rows).
-NeighborList search_mapped(PointView local, std::size_t queries, const std::vector<point_id>& id_of,
+NeighborList search_mapped(PointView local, std::size_t queries, const point_id* id_of,
                            std::size_t ascending_below, const SearchOptions& options, SearchStats& stats);
 
-/// `points` in the periodic box options.box (validated: clear errors naming the axis or point).
-NeighborList search_periodic(PointView points, const SearchOptions& options, SearchStats& stats);
+/// `points` in the periodic box options.box (validated: clear errors naming the axis or point)
+/// on `backend` (resolved: not automatic).
+NeighborList search_periodic(PointView points, Backend backend, const SearchOptions& options, SearchStats& stats);
 
 /// `queries` against `references`, periodic when options.box says so.
 NeighborList search_references(PointView queries, PointView references, const SearchOptions& options,

@@ -65,7 +65,7 @@ NeighborList search(PointView points, const SearchOptions& options, SearchStats*
   out.backend = backend;
   if (!options.devices.empty() && backend != Backend::cuda)
     throw Error(std::string("devices are for the cuda backend, not '") + backend_name(backend) + "'");
-  if (detail::is_periodic(options)) return detail::search_periodic(points, options, out);
+  if (detail::is_periodic(options)) return detail::search_periodic(points, backend, options, out);
   if (points.empty()) return NeighborList({0}, {}, options.half);
   if (backend == Backend::cuda && options.devices.size() > 1) {
     std::vector<SearchOptions> per_device;
