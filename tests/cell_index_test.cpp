@@ -41,11 +41,11 @@ TEST(CellIndex, AnyThreadCountGivesTheSerialSortStableById) {
 TEST(CellIndex, ImagesHoldNoRowAndCarryTheirOriginalsIds) {
   // Points 0..5 on a line, then images of points 1, 4 and 0 (standing anywhere), on any thread count.
   const std::vector<double> xyz = {0.1, 0, 0.5, 0, 0.9, 0, 1.3, 0, 2.2, 0, 2.6, 0, -0.4, 0, 2.95, 0, 0.05, 0};
-  const PointView points(xyz.data(), 9, 2);
+  const PointView points(xyz.data(), 6, 2), images(xyz.data() + 12, 3, 2);
   const std::vector<point_id> image_of = {1, 4, 0};
-  const Grid grid = Grid::fit(points, 1.0, 1);
+  const Grid grid = Grid::fit(points, images, 1.0, 1);
   for (const int threads : {1, 3}) {
-    const CellIndex index(points, grid, threads, image_of);
+    const CellIndex index(points, grid, threads, Images{images, image_of});
     EXPECT_EQ(index.point_count(), 9u);
     EXPECT_EQ(index.row_count(), 6u);
     std::vector<point_id> rows, images;

@@ -14,6 +14,13 @@
 
 namespace horizon {
 
+/// Periodic images sorted into the cells after the points: they hold no row, and families name
+/// each image by the point image_of[k] it copies.
+struct Images {
+  PointView points;
+  std::span<const point_id> image_of;
+};
+
 class CellIndex {
 public:
   /// A run [begin, end) of sorted positions.
@@ -25,10 +32,10 @@ public:
   /// entries past point_count() (ids -1, coordinates NaN, so no test ever passes on them).
   static constexpr std::size_t padding = 16;
 
-  /// Sorts `points` into the cells of `grid` on `threads` threads (same result for any count).
-  /// The last image_of.size() points are periodic images: they hold no row, and their id in
-  /// order() is that of the point image_of[k] they copy, so families name it directly.
-  CellIndex(PointView points, const Grid& grid, int threads = 1, std::span<const point_id> image_of = {});
+  /// Sorts `points`, then `images`, into the cells of `grid` on `threads` threads (same result
+  /// for any count). Image k takes sorted positions as point point_count() + k, with the id of
+  /// the point it copies in order().
+  CellIndex(PointView points, const Grid& grid, int threads = 1, Images images = {});
 
   const Grid& grid() const { return grid_; }
   std::size_t point_count() const { return count_; }
@@ -59,8 +66,10 @@ private:
   Range row_dense(std::int64_t cx, std::int64_t cy, std::int64_t cz) const;
   Range row_sparse(std::int64_t cx, std::int64_t cy, std::int64_t cz) const;
 
-  void sort_dense(PointView points, int threads);
-  void sort_sparse(PointView points);
+  template <class Coordinate>
+  void sort_dense(const Coordinate& coordinate, int threads);
+  template <class Coordinate>
+  void sort_sparse(const Coordinate& coordinate);
 
   Grid grid_;
   std::size_t count_ = 0, rows_ = 0;

@@ -33,6 +33,8 @@ struct Grid {
     return from_bounds(bounds_of(points, threads), points.dims(), points.size(), horizon,
                        cells_per_horizon);
   }
+  /// The grid over two point sets (points and their periodic images).
+  static Grid fit(PointView points, PointView more, double horizon, int cells_per_horizon, int threads = 1);
   /// The same grid from the bounding box of `count` points (the GPU reduces the box itself).
   static Grid from_bounds(const Bounds& box, int dims, std::size_t count, double horizon,
                           int cells_per_horizon);

@@ -1,7 +1,6 @@
 #pragma once
 // The backends behind horizon::search(). Each receives validated, non-empty points.
-#include <span>
-
+#include "horizon/cell_index.hpp"
 #include "horizon/search.hpp"
 
 namespace horizon::detail {
@@ -9,12 +8,9 @@ namespace horizon::detail {
 /// What search(points, options) checks before it picks a backend: Error otherwise.
 void validate_search(PointView points, const SearchOptions& options);
 
-/// The CPU backends. The last image_of.size() points may be periodic images (CellIndex): the
-/// rows are those of the other points, the images found as the points they copy.
-NeighborList search_serial(PointView points, const SearchOptions& options, SearchStats& stats,
-                           std::span<const point_id> image_of = {});
-NeighborList search_openmp(PointView points, const SearchOptions& options, SearchStats& stats,
-                           std::span<const point_id> image_of = {});
+/// The CPU backends; periodic `images` join the points as references named by their originals.
+NeighborList search_serial(PointView points, const SearchOptions& options, SearchStats& stats, Images images = {});
+NeighborList search_openmp(PointView points, const SearchOptions& options, SearchStats& stats, Images images = {});
 bool openmp_built();
 /// Defined in cuda/ when built with CUDA; otherwise throws.
 NeighborList search_cuda(PointView points, const SearchOptions& options, SearchStats& stats);

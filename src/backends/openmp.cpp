@@ -11,12 +11,11 @@ namespace horizon::detail {
 
 bool openmp_built() { return true; }
 
-NeighborList search_openmp(PointView points, const SearchOptions& options, SearchStats& stats,
-                           std::span<const point_id> image_of) {
+NeighborList search_openmp(PointView points, const SearchOptions& options, SearchStats& stats, Images images) {
   const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
   Stopwatch clock;
-  const CellIndex index(points, Grid::fit(points, options.horizon, options.cells_per_horizon, threads), threads,
-                        image_of);
+  const Grid grid = Grid::fit(points, images.points, options.horizon, options.cells_per_horizon, threads);
+  const CellIndex index(points, grid, threads, images);
   stats.grid_seconds = clock.lap();
 
   NeighborList list = search_families(index, options, threads);

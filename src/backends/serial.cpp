@@ -5,11 +5,11 @@
 
 namespace horizon::detail {
 
-NeighborList search_serial(PointView points, const SearchOptions& options, SearchStats& stats,
-                           std::span<const point_id> image_of) {
+NeighborList search_serial(PointView points, const SearchOptions& options, SearchStats& stats, Images images) {
   Stopwatch clock;
   // 1. Lay the grid over the points and sort them by cell.
-  const CellIndex index(points, Grid::fit(points, options.horizon, options.cells_per_horizon), 1, image_of);
+  const CellIndex index(points, Grid::fit(points, images.points, options.horizon, options.cells_per_horizon), 1,
+                        images);
   stats.grid_seconds = clock.lap();
 
   // 2. Test every point against the points of its cell's stencil; rows by input id.

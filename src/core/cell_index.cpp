@@ -11,23 +11,28 @@ namespace horizon {
 
 namespace {
 
-std::array<std::int64_t, 3> cell_of_point(PointView points, const Grid& grid, std::size_t i) {
+template <class Coordinate>
+std::array<std::int64_t, 3> cell_of_point(const Coordinate& coordinate, const Grid& grid, std::size_t i) {
   std::array<std::int64_t, 3> c{0, 0, 0};
-  for (int a = 0; a < grid.dims; ++a) c[a] = grid.cell_of(points(i, a), a);
+  for (int a = 0; a < grid.dims; ++a) c[a] = grid.cell_of(coordinate(i, a), a);
   return c;
 }
 
 }  // namespace
 
-CellIndex::CellIndex(PointView points, const Grid& grid, int threads, std::span<const point_id> image_of)
-    : grid_(grid), count_(points.size()), rows_(points.size() - image_of.size()) {
+CellIndex::CellIndex(PointView points, const Grid& grid, int threads, Images images)
+    : grid_(grid), count_(points.size() + images.points.size()), rows_(points.size()) {
+  // Coordinate `a` of point i: the points first, then the images.
+  const auto coordinate = [&, rows = rows_](std::size_t i, int a) {
+    return i < rows ? points(i, a) : images.points(i - rows, a);
+  };
   // Written in full below; only the padding is set here (zeroing first cost a serial pass).
   order_.resize(count_ + padding);
   std::fill(order_.begin() + static_cast<std::ptrdiff_t>(count_), order_.end(), -1);
   if (grid_.dense)
-    sort_dense(points, threads);
+    sort_dense(coordinate, threads);
   else
-    sort_sparse(points);
+    sort_sparse(coordinate);
   cell_begin_.push_back(static_cast<std::int64_t>(count_));
 
   const auto n = static_cast<std::int64_t>(count_);
@@ -35,7 +40,7 @@ CellIndex::CellIndex(PointView points, const Grid& grid, int threads, std::span<
     axis.resize(count_ + padding);
     std::fill(axis.begin() + static_cast<std::ptrdiff_t>(count_), axis.end(), std::numeric_limits<double>::quiet_NaN());
   }
-  if (image_of.empty()) {
+  if (images.points.empty()) {
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
     for (std::int64_t p = 0; p < n; ++p)
       for (int a = 0; a < 3; ++a)
@@ -58,21 +63,22 @@ CellIndex::CellIndex(PointView points, const Grid& grid, int threads, std::span<
   for (std::int64_t p = 0; p < n; ++p) {
     const point_id i = order_[p];
     for (int a = 0; a < 3; ++a)
-      sorted_[a][static_cast<std::size_t>(p)] = a < grid_.dims ? points(static_cast<std::size_t>(i), a) : 0.0;
-    if (i >= rows) order_[p] = image_of[static_cast<std::size_t>(i - rows)];
+      sorted_[a][static_cast<std::size_t>(p)] = a < grid_.dims ? coordinate(static_cast<std::size_t>(i), a) : 0.0;
+    if (i >= rows) order_[p] = images.image_of[static_cast<std::size_t>(i - rows)];
   }
 }
 
 // Points by linear cell id, stable, so a cell's points are ascending by input id whatever the
 // thread count. One thread: a counting sort (thesis §4.2.3): count, exclusive scan, place.
 // Several: a radix sort of (cell, point) keys, whose runs of equal cells give the table.
-void CellIndex::sort_dense(PointView points, int threads) {
+template <class Coordinate>
+void CellIndex::sort_dense(const Coordinate& coordinate, int threads) {
   const auto n = static_cast<std::int64_t>(count_);
   const auto cells = static_cast<std::int64_t>(grid_.cell_count());
   start_by_id_.resize(static_cast<std::size_t>(cells) + 1);  // every entry is written below
   std::int64_t* start = start_by_id_.data();
   auto cell_id = [&](std::int64_t i) {
-    const auto c = cell_of_point(points, grid_, static_cast<std::size_t>(i));
+    const auto c = cell_of_point(coordinate, grid_, static_cast<std::size_t>(i));
     return grid_.linear_id(c[0], c[1], c[2]);
   };
   if (threads > 1 && cells <= std::int64_t{1} << 32) {
@@ -124,10 +130,11 @@ void CellIndex::sort_dense(PointView points, int threads) {
 }
 
 // Sparse: sort (cz, cy, cx, id) tuples; memory stays O(N) whatever the extent.
-void CellIndex::sort_sparse(PointView points) {
+template <class Coordinate>
+void CellIndex::sort_sparse(const Coordinate& coordinate) {
   std::vector<std::array<std::int64_t, 4>> keys(count_);
   for (std::size_t i = 0; i < count_; ++i) {
-    const auto c = cell_of_point(points, grid_, i);
+    const auto c = cell_of_point(coordinate, grid_, i);
     keys[i] = {c[2], c[1], c[0], static_cast<std::int64_t>(i)};
   }
   std::sort(keys.begin(), keys.end());

@@ -36,6 +36,19 @@ Bounds bounds_of(PointView points, int threads) {
   return box;
 }
 
+Grid Grid::fit(PointView points, PointView more, double horizon, int cells_per_horizon, int threads) {
+  if (more.empty()) return fit(points, horizon, cells_per_horizon, threads);
+  Bounds box = bounds_of(more, threads);
+  if (!points.empty()) {
+    const Bounds first = bounds_of(points, threads);
+    for (int a = 0; a < 3; ++a) {
+      box.lo[a] = std::min(box.lo[a], first.lo[a]);
+      box.hi[a] = std::max(box.hi[a], first.hi[a]);
+    }
+  }
+  return from_bounds(box, points.dims(), points.size() + more.size(), horizon, cells_per_horizon);
+}
+
 Grid Grid::from_bounds(const Bounds& box, int dims, std::size_t count, double horizon,
                        int cells_per_horizon) {
   validate_horizon(horizon, cells_per_horizon);

@@ -20,7 +20,7 @@ const char* axis_name(int axis) { return axis == 0 ? "x" : axis == 1 ? "y" : "z"
 }  // namespace
 
 void validate_box(PointView points, const SearchOptions& options, const char* which,
-                  const std::int64_t* ids) {
+                  const std::int64_t* ids, int threads) {
   const auto& box = options.box;
   for (int a = 0; a < 3; ++a) {
     if (!(std::isfinite(box[a]) && box[a] >= 0))
@@ -32,13 +32,24 @@ void validate_box(PointView points, const SearchOptions& options, const char* wh
       throw Error("box: the horizon " + std::to_string(options.horizon) + " must be below half the period (" +
                   std::to_string(box[a]) + " / 2) on axis " + axis_name(a));
   }
-  for (std::size_t i = 0; i < points.size(); ++i)
+  // The first point outside the box, on all threads; then its message.
+  const auto n = static_cast<std::int64_t>(points.size());
+  std::int64_t outside = n;
+#pragma omp parallel for schedule(static) reduction(min : outside) num_threads(threads > 0 ? threads : omp_get_max_threads()) \
+    if (threads != 1 && n > (1 << 14))
+  for (std::int64_t i = 0; i < n; ++i)
     for (int a = 0; a < points.dims(); ++a) {
-      const double x = points(i, a);
-      if (box[a] > 0 && !(x >= 0 && x < box[a]))
-        throw Error(std::string(which) + " " + std::to_string(ids ? ids[i] : static_cast<std::int64_t>(i)) + " has " + axis_name(a) + " = " +
-                    std::to_string(x) + ", outside the periodic box [0, " + std::to_string(box[a]) + ")");
+      const double x = points(static_cast<std::size_t>(i), a);
+      if (box[a] > 0 && !(x >= 0 && x < box[a])) outside = std::min(outside, i);
     }
+  if (outside == n) return;
+  const auto i = static_cast<std::size_t>(outside);
+  for (int a = 0; a < points.dims(); ++a) {
+    const double x = points(i, a);
+    if (box[a] > 0 && !(x >= 0 && x < box[a]))
+      throw Error(std::string(which) + " " + std::to_string(ids ? ids[i] : outside) + " has " + axis_name(a) + " = " +
+                  std::to_string(x) + ", outside the periodic box [0, " + std::to_string(box[a]) + ")");
+  }
 }
 
 namespace {
@@ -74,28 +85,42 @@ int image_shifts(PointView points, std::size_t i, const SearchOptions& options, 
   return images;
 }
 
+/// The number of image_shifts, without forming them.
+int image_count(PointView points, std::size_t i, const SearchOptions& options) {
+  int product = 1;
+  for (int a = 0; a < points.dims(); ++a) {
+    const double period = options.box[a];
+    if (period == 0) continue;
+    const double reach = options.horizon + period * 0x1p-40;
+    const double x = points(i, a);
+    product *= 1 + (x < reach) + (x >= period - reach);
+  }
+  return product - 1;
+}
+
 /// The images append_images writes, as offsets: point i's from first[i] to first[i + 1].
-ScratchBuffer<std::int64_t> image_offsets(PointView points, const SearchOptions& options) {
+ScratchBuffer<std::int64_t> image_offsets(PointView points, const SearchOptions& options, int threads) {
   const auto n = static_cast<std::int64_t>(points.size());
   ScratchBuffer<std::int64_t> first(points.size() + 1);
   first[0] = 0;
-#pragma omp parallel for schedule(static) if (n > (1 << 14))
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1 && n > (1 << 14))
   for (std::int64_t i = 0; i < n; ++i)
-    first[static_cast<std::size_t>(i) + 1] = image_shifts(points, static_cast<std::size_t>(i), options, nullptr);
-  inclusive_scan(first.data() + 1, points.size(), omp_get_max_threads());
+    first[static_cast<std::size_t>(i) + 1] = image_count(points, static_cast<std::size_t>(i), options);
+  inclusive_scan(first.data() + 1, points.size(), threads);
   return first;
 }
 
 /// Writes the images of image_offsets at `xyz` and their originals' indices (+ `id_base`) at
 /// `id_of`, in parallel.
 void write_images(PointView points, const SearchOptions& options, const ScratchBuffer<std::int64_t>& first,
-                  double* xyz, point_id* id_of, point_id id_base) {
+                  double* xyz, point_id* id_of, point_id id_base, int threads) {
   const int dims = points.dims();
   const auto n = static_cast<std::int64_t>(points.size());
-#pragma omp parallel for schedule(static) if (n > (1 << 14))
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1 && n > (1 << 14))
   for (std::int64_t i = 0; i < n; ++i) {
     double shift[26][3];
     const auto at = static_cast<std::size_t>(first[static_cast<std::size_t>(i)]);
+    if (first[static_cast<std::size_t>(i) + 1] == first[static_cast<std::size_t>(i)]) continue;  // most points
     const int count = image_shifts(points, static_cast<std::size_t>(i), options, shift);
     for (int k = 0; k < count; ++k) {
       for (int a = 0; a < dims; ++a) xyz[(at + k) * dims + a] = points(static_cast<std::size_t>(i), a) + shift[k][a];
@@ -108,12 +133,13 @@ void write_images(PointView points, const SearchOptions& options, const ScratchB
 
 void append_images(PointView points, const SearchOptions& options, PointSet& local, std::vector<point_id>& id_of,
                    point_id id_base) {
-  const ScratchBuffer<std::int64_t> first = image_offsets(points, options);
+  const int threads = omp_get_max_threads();
+  const ScratchBuffer<std::int64_t> first = image_offsets(points, options, threads);
   const std::size_t before = id_of.size(), images = static_cast<std::size_t>(first.back());
   local.xyz.resize(local.xyz.size() + images * static_cast<std::size_t>(points.dims()));
   id_of.resize(before + images);
   write_images(points, options, first, local.xyz.data() + before * static_cast<std::size_t>(points.dims()),
-               id_of.data() + before, id_base);
+               id_of.data() + before, id_base, threads);
 }
 
 namespace {
@@ -133,7 +159,7 @@ LocalPoints local_points(std::initializer_list<std::pair<PointView, point_id>> s
   const PointView last = (sets.end() - 1)->first;
   const int dims = last.dims();
   const ScratchBuffer<std::int64_t> first =
-      is_periodic(options) ? image_offsets(last, options) : ScratchBuffer<std::int64_t>{0};
+      is_periodic(options) ? image_offsets(last, options, omp_get_max_threads()) : ScratchBuffer<std::int64_t>{0};
   std::size_t total = static_cast<std::size_t>(first.back());
   for (const auto& set : sets) total += set.first.size();
   if (total >= static_cast<std::size_t>(std::numeric_limits<point_id>::max()))
@@ -153,7 +179,7 @@ LocalPoints local_points(std::initializer_list<std::pair<PointView, point_id>> s
   }
   if (is_periodic(options))
     write_images(last, options, first, local.xyz.data() + at * static_cast<std::size_t>(dims), local.id_of.data() + at,
-                 (sets.end() - 1)->second);
+                 (sets.end() - 1)->second, omp_get_max_threads());
   return local;
 }
 
@@ -205,20 +231,27 @@ NeighborList search_mapped(PointView local, std::size_t queries, const point_id*
 NeighborList search_periodic(PointView points, Backend backend, const SearchOptions& options, SearchStats& stats) {
   if (options.queries != 0) throw Error("SearchOptions::queries cannot be combined with a periodic box");
   Stopwatch clock;  // the grid's time covers the checks and images too
-  validate_box(points, options, "point");
+  const int threads = backend == Backend::serial ? 1 : options.threads > 0 ? options.threads : omp_get_max_threads();
+  validate_box(points, options, "point", nullptr, threads);
   if (points.empty()) return NeighborList({0}, {}, options.half);
-  const LocalPoints local = local_points({{points, 0}}, options);
   if (backend == Backend::serial || backend == Backend::openmp) {
-    // The CPU backends name each image by its original as they find it: the rows come out final.
+    // The CPU backends sort the images into the cells after the points, each named by its
+    // original: the rows come out final.
+    const ScratchBuffer<std::int64_t> first = image_offsets(points, options, threads);
+    const auto count = static_cast<std::size_t>(first.back());
+    ScratchBuffer<double> xyz(count * static_cast<std::size_t>(points.dims()));
+    ScratchBuffer<point_id> image_of(count);
+    write_images(points, options, first, xyz.data(), image_of.data(), 0, threads);
     const double images_seconds = clock.lap();
     SearchOptions inner = options;
     inner.box = {0, 0, 0};
-    const std::span<const point_id> image_of(local.id_of.data() + points.size(), local.id_of.size() - points.size());
-    NeighborList list = backend == Backend::serial ? search_serial(local.view(points.dims()), inner, stats, image_of)
-                                                   : search_openmp(local.view(points.dims()), inner, stats, image_of);
+    const Images images{PointView(xyz.data(), count, points.dims()), image_of};
+    NeighborList list = backend == Backend::serial ? search_serial(points, inner, stats, images)
+                                                   : search_openmp(points, inner, stats, images);
     stats.grid_seconds += images_seconds;
     return list;
   }
+  const LocalPoints local = local_points({{points, 0}}, options);
   NeighborList list = search_mapped(local.view(points.dims()), points.size(), local.id_of.data(), points.size(), options, stats);
   stats.search_seconds = clock.lap() - stats.grid_seconds;
   return list;

@@ -25,9 +25,9 @@ NeighborList search_references(PointView queries, PointView references, const Se
                                SearchStats& stats);
 
 /// Checks options.box against the points and the horizon: clear errors naming the axis, or the
-/// point (`which` and its index, or ids[index] when given).
+/// first point outside (`which` and its index, or ids[index] when given). On `threads` (0: all).
 void validate_box(PointView points, const SearchOptions& options, const char* which,
-                  const std::int64_t* ids = nullptr);
+                  const std::int64_t* ids = nullptr, int threads = 0);
 
 /// The images of `points` that can be within the horizon of a point of the box: each point
 /// within the horizon of a periodic face, shifted by the period across it (corners: every
