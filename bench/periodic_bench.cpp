@@ -1,10 +1,13 @@
 // horizon_periodic_bench: what a periodic box costs a repeated search (a solver's every step):
 // the lattice filling [0, 10)^3 searched open and with every axis periodic, in one process, on
-// one core and on all; CSV with the ratio. (periodic_cost.sh measures first calls via the CLI.)
+// one core, on all and on the GPU when there is one (host arrays in and out); CSV with the
+// ratio. (periodic_cost.sh measures first calls via the CLI.)
 #include <CLI/CLI.hpp>
 #include <omp.h>
 
 #include <cstdio>
+#include <utility>
+#include <vector>
 
 #include "horizon/generate.hpp"
 #include "horizon/search.hpp"
@@ -20,20 +23,23 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   std::printf("# %d hardware threads; lattice %d in [0, 10)^3; box 10,10,10 against open; median of %d\n",
               omp_get_max_threads(), n, reps);
-  std::printf("m,threads,open_entries,periodic_entries,open_s,periodic_s,periodic_over_open\n");
+  std::printf("m,backend,threads,open_entries,periodic_entries,open_s,periodic_s,periodic_over_open\n");
   const PointSet points = lattice(n, 3);
+  std::vector<std::pair<Backend, int>> runs = {{Backend::serial, 1}, {Backend::openmp, omp_get_max_threads()}};
+  if (backend_available(Backend::cuda)) runs.emplace_back(Backend::cuda, 1);
   for (double m : {1.5, 3.015})
-    for (int threads : {1, omp_get_max_threads()}) {
+    for (const auto& [backend, threads] : runs) {
       SearchOptions open;
       open.horizon = m * 10.0 / n;
-      open.backend = threads == 1 ? Backend::serial : Backend::openmp;
+      open.backend = backend;
       open.threads = threads;
       SearchOptions periodic = open;
       periodic.box = {10, 10, 10};
       std::int64_t open_entries = 0, periodic_entries = 0;
       const double open_s = median_seconds(reps, [&] { open_entries = search(points.view(), open).total(); });
       const double periodic_s = median_seconds(reps, [&] { periodic_entries = search(points.view(), periodic).total(); });
-      std::printf("%g,%d,%lld,%lld,%.4f,%.4f,%.2f\n", m, threads, static_cast<long long>(open_entries),
-                  static_cast<long long>(periodic_entries), open_s, periodic_s, periodic_s / open_s);
+      std::printf("%g,%s,%d,%lld,%lld,%.4f,%.4f,%.2f\n", m, backend_name(backend), threads,
+                  static_cast<long long>(open_entries), static_cast<long long>(periodic_entries), open_s, periodic_s,
+                  periodic_s / open_s);
     }
 }

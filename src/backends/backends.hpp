@@ -8,12 +8,12 @@ namespace horizon::detail {
 /// What search(points, options) checks before it picks a backend: Error otherwise.
 void validate_search(PointView points, const SearchOptions& options);
 
-/// The CPU backends; periodic `images` join the points as references named by their originals.
+/// Each backend; periodic `images` join the points as references found as their originals.
 NeighborList search_serial(PointView points, const SearchOptions& options, SearchStats& stats, Images images = {});
 NeighborList search_openmp(PointView points, const SearchOptions& options, SearchStats& stats, Images images = {});
 bool openmp_built();
 /// Defined in cuda/ when built with CUDA; otherwise throws.
-NeighborList search_cuda(PointView points, const SearchOptions& options, SearchStats& stats);
+NeighborList search_cuda(PointView points, const SearchOptions& options, SearchStats& stats, Images images = {});
 bool cuda_usable();
 
 }  // namespace horizon::detail

@@ -234,8 +234,8 @@ NeighborList search_periodic(PointView points, Backend backend, const SearchOpti
   const int threads = backend == Backend::serial ? 1 : options.threads > 0 ? options.threads : omp_get_max_threads();
   validate_box(points, options, "point", nullptr, threads);
   if (points.empty()) return NeighborList({0}, {}, options.half);
-  if (backend == Backend::serial || backend == Backend::openmp) {
-    // The CPU backends sort the images into the cells after the points, each named by its
+  if (backend != Backend::cuda || options.devices.size() <= 1) {
+    // One device sorts the images into the cells after the points, each found as its
     // original: the rows come out final.
     const ScratchBuffer<std::int64_t> first = image_offsets(points, options, threads);
     const auto count = static_cast<std::size_t>(first.back());
@@ -245,12 +245,16 @@ NeighborList search_periodic(PointView points, Backend backend, const SearchOpti
     const double images_seconds = clock.lap();
     SearchOptions inner = options;
     inner.box = {0, 0, 0};
+    if (!options.devices.empty()) inner.device = options.devices[0];
+    inner.devices.clear();
     const Images images{PointView(xyz.data(), count, points.dims()), image_of};
-    NeighborList list = backend == Backend::serial ? search_serial(points, inner, stats, images)
-                                                   : search_openmp(points, inner, stats, images);
+    NeighborList list = backend == Backend::serial   ? search_serial(points, inner, stats, images)
+                        : backend == Backend::openmp ? search_openmp(points, inner, stats, images)
+                                                     : search_cuda(points, inner, stats, images);
     stats.grid_seconds += images_seconds;
     return list;
   }
+  // Several GPUs: each part a query search among points and images, the ids mapped after.
   const LocalPoints local = local_points({{points, 0}}, options);
   NeighborList list = search_mapped(local.view(points.dims()), points.size(), local.id_of.data(), points.size(), options, stats);
   stats.search_seconds = clock.lap() - stats.grid_seconds;

@@ -118,7 +118,7 @@ __global__ void __launch_bounds__(cell_block) cell_families(DeviceIndexView ix, 
           const int i = j * cell_block + static_cast<int>(threadIdx.x);
           if (i < stencil) {
             where[j] = static_cast<point_id>(position_of(s, i));
-            keys[j] = ix.order[where[j]];
+            keys[j] = ix.id[where[j]];
           } else {
             keys[j] = static_cast<point_id>((1u << a.sort_bits) - 1);  // sorts after every id
             where[j] = 0;
@@ -141,7 +141,7 @@ __global__ void __launch_bounds__(cell_block) cell_families(DeviceIndexView ix, 
           s.at.x[i] = ix.x[q];
           s.at.y[i] = ix.y[q];
           if (D == 3) s.at.z[i] = ix.z[q];
-          s.id[i] = ix.order[q];
+          s.id[i] = ix.id[q];
         }
       }
       __syncthreads();
@@ -169,7 +169,7 @@ __global__ void __launch_bounds__(cell_block) cell_families(DeviceIndexView ix, 
                                             x = ix.x[begin + i];
                                             y = ix.y[begin + i];
                                             z = D == 3 ? ix.z[begin + i] : 0.0;
-                                            id = ix.order[begin + i];
+                                            id = ix.id[begin + i];
                                           });
         }
       }

@@ -126,6 +126,13 @@ __global__ void mark_cell_firsts(const std::int64_t* a, const std::int64_t* b, c
   flags[p] = p == 0 || a[p] != a[p - 1] || (b && (b[p] != b[p - 1] || c[p] != c[p - 1]));
 }
 
+// id[p] = order[p], or for a periodic image (order[p] >= rows) the id of the point it copies.
+__global__ void name_images(const point_id* order, std::int64_t n, std::int64_t rows, const point_id* image_of,
+                            point_id* id) {
+  const std::int64_t p = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
+  if (p < n) id[p] = order[p] < rows ? order[p] : image_of[order[p] - rows];
+}
+
 // start[c] = first sorted position of a cell with linear id >= c.
 __global__ void cell_starts(const std::int64_t* sorted_keys, std::int64_t n, std::int64_t cells,
                             std::int64_t* start) {
@@ -138,7 +145,8 @@ struct DeviceIndexView {
   GridParams grid;
   std::int64_t n, queries;  // points 0 .. queries-1 get families
   const double *x, *y, *z;
-  const point_id* order;
+  const point_id* order;  // the point at each sorted position (its row)
+  const point_id* id;     // the id families name it by: order, but periodic images as their originals
   const std::int64_t* start;              // dense: linear id -> first sorted position
   const std::int64_t *kx, *ky, *kz;       // sparse: sorted cell coordinates per point
   const std::int64_t* cell_first;         // first sorted position of each occupied cell
@@ -187,11 +195,13 @@ struct PassArgs {
 
 class DeviceIndex {
 public:
+  /// The last `images` of the `count` points may be periodic images, which hold no row; image k
+  /// is found as point image_of[k] (device memory).
   DeviceIndex(const double* xyz, std::size_t count, int dims, const SearchOptions& options,
-              cudaStream_t stream, MemoryMeter& meter)
-      : n_(static_cast<std::int64_t>(count)), x_(count, meter), y_(count, meter), z_(count, meter),
-        order_(count, meter), start_(0, meter), kx_(0, meter), ky_(0, meter), kz_(0, meter),
-        cell_first_(count, meter), cell_count_(1, meter) {
+              cudaStream_t stream, MemoryMeter& meter, std::size_t images = 0, const point_id* image_of = nullptr)
+      : n_(static_cast<std::int64_t>(count)), rows_(static_cast<std::int64_t>(count - images)), x_(count, meter),
+        y_(count, meter), z_(count, meter), order_(count, meter), id_(images ? count : 0, meter), start_(0, meter),
+        kx_(0, meter), ky_(0, meter), kz_(0, meter), cell_first_(count, meter), cell_count_(1, meter) {
     grid_ = Grid::from_bounds(reduce_bounds(xyz, count, dims, stream, meter), dims, count, options.horizon,
                               options.cells_per_horizon);
     const GridParams g = params_of(grid_);
@@ -218,13 +228,20 @@ public:
     list_cells(firsts.get(), stream, meter);
     gather_coords<<<blocks_for(count), block_size, 0, stream>>>(xyz, dims, order_.get(), n_, x_.get(), y_.get(), z_.get());
     check_launch("gather_coords");
+    if (images) {
+      name_images<<<blocks_for(count), block_size, 0, stream>>>(order_.get(), n_, rows_, image_of, id_.get());
+      check_launch("name_images");
+    }
   }
 
   DeviceIndexView view(std::size_t queries) const {
-    return {params_of(grid_), n_, queries ? static_cast<std::int64_t>(queries) : n_, x_.get(), y_.get(), z_.get(), order_.get(), start_.get(),
-            kx_.get(), ky_.get(), kz_.get(), cell_first_.get(), cell_count_.get()};
+    return {params_of(grid_), n_, queries ? static_cast<std::int64_t>(queries) : rows_, x_.get(), y_.get(), z_.get(),
+            order_.get(), id_.size() ? id_.get() : order_.get(), start_.get(), kx_.get(), ky_.get(), kz_.get(),
+            cell_first_.get(), cell_count_.get()};
   }
   std::int64_t size() const { return n_; }
+  /// The points that hold rows: all but the images.
+  std::int64_t rows() const { return rows_; }
 
 private:
   static Bounds reduce_bounds(const double* xyz, std::size_t count, int dims, cudaStream_t stream,
@@ -235,10 +252,10 @@ private:
                    DeviceArray<point_id>& ids_sorted, cudaStream_t stream, MemoryMeter& meter);
   void list_cells(const unsigned char* firsts, cudaStream_t stream, MemoryMeter& meter);
 
-  std::int64_t n_;
+  std::int64_t n_, rows_;
   Grid grid_;
   DeviceArray<double> x_, y_, z_;
-  DeviceArray<point_id> order_;
+  DeviceArray<point_id> order_, id_;
   DeviceArray<std::int64_t> start_, kx_, ky_, kz_;
   DeviceArray<std::int64_t> cell_first_, cell_count_;
 };

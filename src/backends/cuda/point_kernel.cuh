@@ -39,7 +39,7 @@ __device__ std::int64_t walk_stencil(const DeviceIndexView& ix, std::int64_t p, 
       stencil += end - begin;
       for (std::int64_t q = begin; q < end; ++q) {
         const double d = metric_accumulate<M>(xi - ix.x[q], yi - ix.y[q], D == 3 ? zi - ix.z[q] : 0.0);
-        const point_id other = ix.order[q];
+        const point_id other = ix.id[q];
         if (d < threshold && (Half ? other > self : q != p)) emit(other);
       }
     }

@@ -80,11 +80,12 @@ struct Counts {
   std::int64_t long_rows = 0;                        // rows longer than staged_row
 };
 
-/// Counts each family, then an inclusive scan into offsets[1..n]; one synchronisation, to
-/// read the totals the allocation of the list needs.
+/// Counts each family, then an inclusive scan into offsets[1..count] (the rows: the points
+/// without the images); one synchronisation, to read the totals the allocation of the list needs.
 Counts count_offsets(const DeviceIndex& index, const SearchOptions& options, std::size_t count,
                      cudaStream_t stream, MemoryMeter& meter) {
-  DeviceArray<std::int64_t> counts(count, meter), offsets(count + 1, meter), summary(5, meter);
+  DeviceArray<std::int64_t> counts(static_cast<std::size_t>(index.size()), meter), offsets(count + 1, meter),
+      summary(5, meter);
   HORIZON_CUDA_CHECK(cudaMemsetAsync(summary.get(), 0, summary.bytes(), stream));
   PassArgs args = pass_args(options, index.size());
   args.counts = counts.get();
@@ -92,7 +93,7 @@ Counts count_offsets(const DeviceIndex& index, const SearchOptions& options, std
   args.long_rows = reinterpret_cast<unsigned long long*>(summary.get() + 4);
   const DeviceIndexView ix = index.view(options.queries);
   with_shape(options.metric, ix.grid.dims, options.half, [&](auto m, auto d, auto h) {
-    count_families<HORIZON_SHAPE(m, d, h)><<<blocks_for(count), block_size, 0, stream>>>(ix, args);
+    count_families<HORIZON_SHAPE(m, d, h)><<<blocks_for(static_cast<std::size_t>(ix.n)), block_size, 0, stream>>>(ix, args);
   });
   check_launch("count_families");
   HORIZON_CUDA_CHECK(cudaMemsetAsync(offsets.get(), 0, sizeof(std::int64_t), stream));
@@ -300,27 +301,35 @@ bool cuda_usable() {
 
 // Host arrays in, host CSR out. When the list does not fit on the GPU it is built in batches
 // of rows, each filled, sorted and copied back before the next.
-NeighborList search_cuda(PointView points, const SearchOptions& options, SearchStats& stats) {
+NeighborList search_cuda(PointView points, const SearchOptions& options, SearchStats& stats, Images images) {
   select_device(options.device);
   stats.gpu_name = cuda_device_name(options.device);
   stats.threads = 1;
-  const std::size_t n = points.size();
+  const std::size_t n = points.size(), extra = images.points.size();
   const int dims = points.dims();
   if (options.device >= max_devices) throw Error("CUDA device " + std::to_string(options.device) + " is past the 64 supported");
   const StreamLease lease(options.device);  // outlives every array below, freed on its stream
   const cudaStream_t stream = lease.get();
   MemoryMeter meter(options.device, stream);
 
+  // The points, then their periodic images (and the ids those are found as).
   auto clock = std::chrono::steady_clock::now();
-  DeviceArray<double> xyz(n * static_cast<std::size_t>(dims), meter);
+  DeviceArray<double> xyz((n + extra) * static_cast<std::size_t>(dims), meter);
   upload_coordinates(xyz.get(), points, stream);
+  DeviceArray<point_id> image_of(extra, meter);
+  if (extra) {
+    upload_coordinates(xyz.get() + n * static_cast<std::size_t>(dims), images.points, stream);
+    HORIZON_CUDA_CHECK(cudaMemcpyAsync(image_of.get(), images.image_of.data(), extra * sizeof(point_id),
+                                       cudaMemcpyHostToDevice, stream));
+  }
   stats.host_to_device_seconds = seconds_since(clock);
 
   clock = std::chrono::steady_clock::now();
-  const DeviceIndex index(xyz.get(), n, dims, options, stream, meter);
+  const DeviceIndex index(xyz.get(), n + extra, dims, options, stream, meter, extra, image_of.get());
   HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
   stats.grid_seconds = seconds_since(clock);
   xyz.reset();
+  image_of.reset();
 
   auto kernels = std::chrono::steady_clock::now();
   const Counts counts = count_offsets(index, options, n, stream, meter);
