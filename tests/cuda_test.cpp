@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <random>
@@ -13,6 +14,7 @@
 #include "horizon/cuda.hpp"
 #include "horizon/device_verlet_list.hpp"
 #include "horizon/generate.hpp"
+#include "horizon/oracle.hpp"
 #include "horizon/search.hpp"
 
 #if defined(HORIZON_WITH_CUDA)
@@ -165,6 +167,36 @@ TEST(Cuda, DeviceResidentSearchEqualsHostSearch) {
       EXPECT_EQ(on_gpu.to_host(half), search(points.view(), options));
     }
     cudaStreamDestroy(stream);
+    cudaFree(device_xyz);
+  }
+}
+
+TEST(Cuda, DeviceResidentPeriodicSearchEqualsBruteForce) {
+  REQUIRE_GPU();
+  // Every axis periodic in 3-D, one open axis in 2-D; full and half lists; a point outside the
+  // box is named as by the host search.
+  for (int dims : {2, 3}) {
+    PointSet points = random_cloud(3000, dims, 17);
+    for (double& x : points.xyz) x = std::fmod(x + 10, 1.0);
+    SearchOptions options = options_for(dims == 3 ? 0.12 : 0.05, Backend::serial);
+    options.box = dims == 3 ? std::array<double, 3>{1, 1, 1} : std::array<double, 3>{1, 0, 0};
+    const std::size_t bytes = points.xyz.size() * sizeof(double);
+    double* device_xyz = nullptr;
+    ASSERT_EQ(cudaMalloc(&device_xyz, bytes), cudaSuccess);
+    ASSERT_EQ(cudaMemcpy(device_xyz, points.xyz.data(), bytes, cudaMemcpyHostToDevice), cudaSuccess);
+    for (bool half : {false, true}) {
+      options.half = half;
+      const NeighborList expected = brute_force(points.view(), options);
+      EXPECT_EQ(search_device(device_xyz, points.size(), dims, options).to_host(half), expected) << dims << "-D " << half;
+    }
+    points.xyz[static_cast<std::size_t>(dims) * 1234] = 1.0;  // x = period: outside [0, 1)
+    ASSERT_EQ(cudaMemcpy(device_xyz, points.xyz.data(), bytes, cudaMemcpyHostToDevice), cudaSuccess);
+    try {
+      search_device(device_xyz, points.size(), dims, options);
+      ADD_FAILURE() << "a point outside the box accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("point 1234 has x = 1"), std::string::npos) << e.what();
+    }
     cudaFree(device_xyz);
   }
 }

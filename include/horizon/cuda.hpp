@@ -56,6 +56,7 @@ private:
 
 /// The neighbour list of `count` points whose AoS coordinates (x y [z], float64) are in GPU
 /// memory at `xyz`, computed on `stream` (of device options.device, which must be current).
+/// A periodic options.box is honoured as by search() (points checked against it on the GPU).
 /// Throws DeviceOutOfMemory, naming the bytes needed, when the list does not fit.
 DeviceNeighborList search_device(const double* xyz, std::size_t count, int dims,
                                  const SearchOptions& options, cuda_stream stream = nullptr,

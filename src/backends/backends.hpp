@@ -8,12 +8,13 @@ namespace horizon::detail {
 /// What search(points, options) checks before it picks a backend: Error otherwise.
 void validate_search(PointView points, const SearchOptions& options);
 
-/// Each backend; periodic `images` join the points as references found as their originals.
+/// The CPU backends; periodic `images` join the points as references found as their originals.
 NeighborList search_serial(PointView points, const SearchOptions& options, SearchStats& stats, Images images = {});
 NeighborList search_openmp(PointView points, const SearchOptions& options, SearchStats& stats, Images images = {});
 bool openmp_built();
-/// Defined in cuda/ when built with CUDA; otherwise throws.
-NeighborList search_cuda(PointView points, const SearchOptions& options, SearchStats& stats, Images images = {});
+/// Defined in cuda/ when built with CUDA; otherwise throws. Makes the images of a periodic
+/// options.box itself (points validated against it).
+NeighborList search_cuda(PointView points, const SearchOptions& options, SearchStats& stats);
 bool cuda_usable();
 
 }  // namespace horizon::detail

@@ -15,7 +15,7 @@ namespace {
 
 namespace detail {
 bool cuda_usable() { return false; }
-NeighborList search_cuda(PointView, const SearchOptions&, SearchStats&, Images) { no_cuda(); }
+NeighborList search_cuda(PointView, const SearchOptions&, SearchStats&) { no_cuda(); }
 }  // namespace detail
 
 void DeviceNeighborList::Free::operator()(void*) const {}

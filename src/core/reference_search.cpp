@@ -11,6 +11,7 @@
 #include "horizon/error.hpp"
 #include "horizon/stopwatch.hpp"
 #include "parallel_scan.hpp"
+#include "periodic_images.hpp"
 
 namespace horizon::detail {
 namespace {
@@ -19,19 +20,32 @@ const char* axis_name(int axis) { return axis == 0 ? "x" : axis == 1 ? "y" : "z"
 
 }  // namespace
 
-void validate_box(PointView points, const SearchOptions& options, const char* which,
-                  const std::int64_t* ids, int threads) {
+void validate_box_shape(const SearchOptions& options, int dims) {
   const auto& box = options.box;
   for (int a = 0; a < 3; ++a) {
     if (!(std::isfinite(box[a]) && box[a] >= 0))
       throw Error(std::string("box: the period on axis ") + axis_name(a) + " must be finite and >= 0 (0: open)");
-    if (box[a] > 0 && a >= points.dims())
+    if (box[a] > 0 && a >= dims)
       throw Error(std::string("box: a period on axis ") + axis_name(a) + " but the points are " +
-                  std::to_string(points.dims()) + "-D");
+                  std::to_string(dims) + "-D");
     if (box[a] > 0 && !(options.horizon < box[a] / 2))
       throw Error("box: the horizon " + std::to_string(options.horizon) + " must be below half the period (" +
                   std::to_string(box[a]) + " / 2) on axis " + axis_name(a));
   }
+}
+
+void throw_outside_box(const char* which, std::int64_t id, const double* xyz, int dims, const SearchOptions& options) {
+  const auto& box = options.box;
+  for (int a = 0; a < dims; ++a)
+    if (box[a] > 0 && !(xyz[a] >= 0 && xyz[a] < box[a]))
+      throw Error(std::string(which) + " " + std::to_string(id) + " has " + axis_name(a) + " = " +
+                  std::to_string(xyz[a]) + ", outside the periodic box [0, " + std::to_string(box[a]) + ")");
+}
+
+void validate_box(PointView points, const SearchOptions& options, const char* which,
+                  const std::int64_t* ids, int threads) {
+  const auto& box = options.box;
+  validate_box_shape(options, points.dims());
   // The first point outside the box, on all threads; then its message.
   const auto n = static_cast<std::int64_t>(points.size());
   std::int64_t outside = n;
@@ -44,68 +58,30 @@ void validate_box(PointView points, const SearchOptions& options, const char* wh
     }
   if (outside == n) return;
   const auto i = static_cast<std::size_t>(outside);
-  for (int a = 0; a < points.dims(); ++a) {
-    const double x = points(i, a);
-    if (box[a] > 0 && !(x >= 0 && x < box[a]))
-      throw Error(std::string(which) + " " + std::to_string(ids ? ids[i] : outside) + " has " + axis_name(a) + " = " +
-                  std::to_string(x) + ", outside the periodic box [0, " + std::to_string(box[a]) + ")");
-  }
+  double xyz[3];
+  for (int a = 0; a < points.dims(); ++a) xyz[a] = points(i, a);
+  throw_outside_box(which, ids ? ids[i] : outside, xyz, points.dims(), options);
 }
 
 namespace {
 
-/// The shifts of point i's periodic images (each axis: 0, +L near the low face, -L near the
-/// high one; all combinations but the point itself); returns how many, at most 26.
-int image_shifts(PointView points, std::size_t i, const SearchOptions& options, double (*shift)[3]) {
-  double shifts[3][3];  // per axis: 0, then the shifts this point needs
-  int count[3];
-  for (int a = 0; a < 3; ++a) {
-    const double period = options.box[a];
-    shifts[a][0] = 0;
-    count[a] = 1;
-    if (a >= points.dims() || period == 0) continue;
-    // The margin keeps every image whose rounded coordinate could be within the horizon.
-    const double reach = options.horizon + period * 0x1p-40;
-    const double x = points(i, a);
-    if (x < reach) shifts[a][count[a]++] = period;
-    if (x >= period - reach) shifts[a][count[a]++] = -period;
-  }
-  int images = 0;
-  for (int sx = 0; sx < count[0]; ++sx)
-    for (int sy = 0; sy < count[1]; ++sy)
-      for (int sz = 0; sz < count[2]; ++sz)
-        if (sx != 0 || sy != 0 || sz != 0) {
-          if (shift) {
-            shift[images][0] = shifts[0][sx];
-            shift[images][1] = shifts[1][sy];
-            shift[images][2] = shifts[2][sz];
-          }
-          ++images;
-        }
-  return images;
-}
-
-/// The number of image_shifts, without forming them.
-int image_count(PointView points, std::size_t i, const SearchOptions& options) {
-  int product = 1;
-  for (int a = 0; a < points.dims(); ++a) {
-    const double period = options.box[a];
-    if (period == 0) continue;
-    const double reach = options.horizon + period * 0x1p-40;
-    const double x = points(i, a);
-    product *= 1 + (x < reach) + (x >= period - reach);
-  }
-  return product - 1;
+/// Point i's coordinates, as PeriodicBox reads them.
+void coordinates_of(PointView points, std::size_t i, double* xyz) {
+  for (int a = 0; a < points.dims(); ++a) xyz[a] = points(i, a);
 }
 
 /// The images append_images writes, as offsets: point i's from first[i] to first[i + 1].
 ScratchBuffer<std::int64_t> image_offsets(PointView points, const SearchOptions& options, int threads) {
   const auto n = static_cast<std::int64_t>(points.size());
+  const PeriodicBox box(options, points.dims());
   ScratchBuffer<std::int64_t> first(points.size() + 1);
   first[0] = 0;
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1 && n > (1 << 14))
-  for (std::int64_t i = 0; i < n; ++i)
-    first[static_cast<std::size_t>(i) + 1] = image_count(points, static_cast<std::size_t>(i), options);
+  for (std::int64_t i = 0; i < n; ++i) {
+    double xyz[3];
+    coordinates_of(points, static_cast<std::size_t>(i), xyz);
+    first[static_cast<std::size_t>(i) + 1] = box.image_count(xyz);
+  }
   inclusive_scan(first.data() + 1, points.size(), threads);
   return first;
 }
@@ -116,14 +92,16 @@ void write_images(PointView points, const SearchOptions& options, const ScratchB
                   double* xyz, point_id* id_of, point_id id_base, int threads) {
   const int dims = points.dims();
   const auto n = static_cast<std::int64_t>(points.size());
+  const PeriodicBox box(options, dims);
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1 && n > (1 << 14))
   for (std::int64_t i = 0; i < n; ++i) {
-    double shift[26][3];
     const auto at = static_cast<std::size_t>(first[static_cast<std::size_t>(i)]);
     if (first[static_cast<std::size_t>(i) + 1] == first[static_cast<std::size_t>(i)]) continue;  // most points
-    const int count = image_shifts(points, static_cast<std::size_t>(i), options, shift);
+    double point[3], shift[26][3];
+    coordinates_of(points, static_cast<std::size_t>(i), point);
+    const int count = box.image_shifts(point, shift);
     for (int k = 0; k < count; ++k) {
-      for (int a = 0; a < dims; ++a) xyz[(at + k) * dims + a] = points(static_cast<std::size_t>(i), a) + shift[k][a];
+      for (int a = 0; a < dims; ++a) xyz[(at + k) * dims + a] = point[a] + shift[k][a];
       id_of[at + k] = id_base + static_cast<point_id>(i);
     }
   }
@@ -234,8 +212,15 @@ NeighborList search_periodic(PointView points, Backend backend, const SearchOpti
   const int threads = backend == Backend::serial ? 1 : options.threads > 0 ? options.threads : omp_get_max_threads();
   validate_box(points, options, "point", nullptr, threads);
   if (points.empty()) return NeighborList({0}, {}, options.half);
-  if (backend != Backend::cuda || options.devices.size() <= 1) {
-    // One device sorts the images into the cells after the points, each found as its
+  if (backend == Backend::cuda && options.devices.size() <= 1) {
+    // One GPU makes the images itself, and finds each as its original.
+    SearchOptions one = options;
+    if (!options.devices.empty()) one.device = options.devices[0];
+    one.devices.clear();
+    return search_cuda(points, one, stats);
+  }
+  if (backend != Backend::cuda) {
+    // The CPU backends sort the images into the cells after the points, each found as its
     // original: the rows come out final.
     const ScratchBuffer<std::int64_t> first = image_offsets(points, options, threads);
     const auto count = static_cast<std::size_t>(first.back());
@@ -245,12 +230,9 @@ NeighborList search_periodic(PointView points, Backend backend, const SearchOpti
     const double images_seconds = clock.lap();
     SearchOptions inner = options;
     inner.box = {0, 0, 0};
-    if (!options.devices.empty()) inner.device = options.devices[0];
-    inner.devices.clear();
     const Images images{PointView(xyz.data(), count, points.dims()), image_of};
-    NeighborList list = backend == Backend::serial   ? search_serial(points, inner, stats, images)
-                        : backend == Backend::openmp ? search_openmp(points, inner, stats, images)
-                                                     : search_cuda(points, inner, stats, images);
+    NeighborList list = backend == Backend::serial ? search_serial(points, inner, stats, images)
+                                                   : search_openmp(points, inner, stats, images);
     stats.grid_seconds += images_seconds;
     return list;
   }

@@ -24,6 +24,12 @@ NeighborList search_periodic(PointView points, Backend backend, const SearchOpti
 NeighborList search_references(PointView queries, PointView references, const SearchOptions& options,
                                SearchStats& stats);
 
+/// Checks options.box against the dimension and the horizon: clear errors naming the axis.
+void validate_box_shape(const SearchOptions& options, int dims);
+
+/// Throws the error for `which` point `id` at xyz when it lies outside options.box.
+void throw_outside_box(const char* which, std::int64_t id, const double* xyz, int dims, const SearchOptions& options);
+
 /// Checks options.box against the points and the horizon: clear errors naming the axis, or the
 /// first point outside (`which` and its index, or ids[index] when given). On `threads` (0: all).
 void validate_box(PointView points, const SearchOptions& options, const char* which,

@@ -26,6 +26,7 @@
 #include "device_memory.hpp"
 #include "host_copy.cuh"
 #include "launch.cuh"
+#include "periodic_images.cuh"
 #include "point_kernel.cuh"
 #include "row_sort.cuh"
 #include "horizon/cuda.hpp"
@@ -301,35 +302,31 @@ bool cuda_usable() {
 
 // Host arrays in, host CSR out. When the list does not fit on the GPU it is built in batches
 // of rows, each filled, sorted and copied back before the next.
-NeighborList search_cuda(PointView points, const SearchOptions& options, SearchStats& stats, Images images) {
+NeighborList search_cuda(PointView points, const SearchOptions& options, SearchStats& stats) {
   select_device(options.device);
   stats.gpu_name = cuda_device_name(options.device);
   stats.threads = 1;
-  const std::size_t n = points.size(), extra = images.points.size();
+  const std::size_t n = points.size();
   const int dims = points.dims();
   if (options.device >= max_devices) throw Error("CUDA device " + std::to_string(options.device) + " is past the 64 supported");
   const StreamLease lease(options.device);  // outlives every array below, freed on its stream
   const cudaStream_t stream = lease.get();
   MemoryMeter meter(options.device, stream);
 
-  // The points, then their periodic images (and the ids those are found as).
   auto clock = std::chrono::steady_clock::now();
-  DeviceArray<double> xyz((n + extra) * static_cast<std::size_t>(dims), meter);
+  DeviceArray<double> xyz(n * static_cast<std::size_t>(dims), meter);
   upload_coordinates(xyz.get(), points, stream);
-  DeviceArray<point_id> image_of(extra, meter);
-  if (extra) {
-    upload_coordinates(xyz.get() + n * static_cast<std::size_t>(dims), images.points, stream);
-    HORIZON_CUDA_CHECK(cudaMemcpyAsync(image_of.get(), images.image_of.data(), extra * sizeof(point_id),
-                                       cudaMemcpyHostToDevice, stream));
-  }
   stats.host_to_device_seconds = seconds_since(clock);
 
+  // A periodic box: the points' images join them on the GPU, each found as its original.
   clock = std::chrono::steady_clock::now();
-  const DeviceIndex index(xyz.get(), n + extra, dims, options, stream, meter, extra, image_of.get());
+  PointsWithImages local{std::move(xyz), DeviceArray<point_id>(0, meter), 0};
+  if (is_periodic(options)) local = append_images_on_device(local.xyz.get(), n, PeriodicBox(options, dims), stream, meter);
+  const DeviceIndex index(local.xyz.get(), n + local.images, dims, options, stream, meter, local.images,
+                          local.image_of.get());
   HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
   stats.grid_seconds = seconds_since(clock);
-  xyz.reset();
-  image_of.reset();
+  local = PointsWithImages{DeviceArray<double>(0, meter), DeviceArray<point_id>(0, meter), 0};
 
   auto kernels = std::chrono::steady_clock::now();
   const Counts counts = count_offsets(index, options, n, stream, meter);
@@ -401,7 +398,14 @@ DeviceNeighborList search_device(const double* xyz, std::size_t count, int dims,
     return list;
   }
   auto start = std::chrono::steady_clock::now();
-  const detail::DeviceIndex index(xyz, count, dims, options, stream, meter);
+  // A periodic box: the points checked against it, their images made beside them.
+  detail::PointsWithImages local{detail::DeviceArray<double>(0, meter), detail::DeviceArray<point_id>(0, meter), 0};
+  if (detail::is_periodic(options)) {
+    detail::check_inside_box(xyz, count, dims, options, stream, meter);
+    local = detail::append_images_on_device(xyz, count, detail::PeriodicBox(options, dims), stream, meter);
+  }
+  const detail::DeviceIndex index(local.images ? local.xyz.get() : xyz, count + local.images, dims, options, stream,
+                                  meter, local.images, local.image_of.get());
   if (stats) {
     HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
     stats->grid_seconds = detail::seconds_since(start);
