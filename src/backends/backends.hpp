@@ -12,8 +12,8 @@ void validate_search(PointView points, const SearchOptions& options);
 NeighborList search_serial(PointView points, const SearchOptions& options, SearchStats& stats, Images images = {});
 NeighborList search_openmp(PointView points, const SearchOptions& options, SearchStats& stats, Images images = {});
 bool openmp_built();
-/// Defined in cuda/ when built with CUDA; otherwise throws. Makes the images of a periodic
-/// options.box itself (points validated against it).
+/// Defined in cuda/ when built with CUDA; otherwise throws. A periodic options.box: checks the
+/// points against it and makes their images on the GPU.
 NeighborList search_cuda(PointView points, const SearchOptions& options, SearchStats& stats);
 bool cuda_usable();
 

@@ -208,17 +208,20 @@ NeighborList search_mapped(PointView local, std::size_t queries, const point_id*
 
 NeighborList search_periodic(PointView points, Backend backend, const SearchOptions& options, SearchStats& stats) {
   if (options.queries != 0) throw Error("SearchOptions::queries cannot be combined with a periodic box");
-  Stopwatch clock;  // the grid's time covers the checks and images too
-  const int threads = backend == Backend::serial ? 1 : options.threads > 0 ? options.threads : omp_get_max_threads();
-  validate_box(points, options, "point", nullptr, threads);
-  if (points.empty()) return NeighborList({0}, {}, options.half);
   if (backend == Backend::cuda && options.devices.size() <= 1) {
-    // One GPU makes the images itself, and finds each as its original.
+    // One GPU checks the points against the box, makes the images and finds each as its
+    // original: the host touches no point twice.
+    validate_box_shape(options, points.dims());
+    if (points.empty()) return NeighborList({0}, {}, options.half);
     SearchOptions one = options;
     if (!options.devices.empty()) one.device = options.devices[0];
     one.devices.clear();
     return search_cuda(points, one, stats);
   }
+  Stopwatch clock;  // the grid's time covers the checks and images too
+  const int threads = backend == Backend::serial ? 1 : options.threads > 0 ? options.threads : omp_get_max_threads();
+  validate_box(points, options, "point", nullptr, threads);
+  if (points.empty()) return NeighborList({0}, {}, options.half);
   if (backend != Backend::cuda) {
     // The CPU backends sort the images into the cells after the points, each found as its
     // original: the rows come out final.

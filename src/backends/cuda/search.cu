@@ -318,10 +318,14 @@ NeighborList search_cuda(PointView points, const SearchOptions& options, SearchS
   upload_coordinates(xyz.get(), points, stream);
   stats.host_to_device_seconds = seconds_since(clock);
 
-  // A periodic box: the points' images join them on the GPU, each found as its original.
+  // A periodic box: the points checked against it, their images made beside them, each found
+  // as its original.
   clock = std::chrono::steady_clock::now();
   PointsWithImages local{std::move(xyz), DeviceArray<point_id>(0, meter), 0};
-  if (is_periodic(options)) local = append_images_on_device(local.xyz.get(), n, PeriodicBox(options, dims), stream, meter);
+  if (is_periodic(options)) {
+    check_inside_box(local.xyz.get(), n, dims, options, stream, meter);
+    local = append_images_on_device(local.xyz.get(), n, PeriodicBox(options, dims), stream, meter);
+  }
   const DeviceIndex index(local.xyz.get(), n + local.images, dims, options, stream, meter, local.images,
                           local.image_of.get());
   HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
