@@ -70,17 +70,28 @@ void coordinates_of(PointView points, std::size_t i, double* xyz) {
   for (int a = 0; a < points.dims(); ++a) xyz[a] = points(i, a);
 }
 
-/// The images append_images writes, as offsets: point i's from first[i] to first[i + 1].
-ScratchBuffer<std::int64_t> image_offsets(PointView points, const SearchOptions& options, int threads) {
+/// The images append_images writes, as offsets: point i's from first[i] to first[i + 1]. With
+/// `check`, the points are validated against the box in the same pass (validate_box's error).
+ScratchBuffer<std::int64_t> image_offsets(PointView points, const SearchOptions& options, int threads,
+                                          bool check = false) {
   const auto n = static_cast<std::int64_t>(points.size());
   const PeriodicBox box(options, points.dims());
   ScratchBuffer<std::int64_t> first(points.size() + 1);
   first[0] = 0;
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1 && n > (1 << 14))
+  std::int64_t outside = n;
+#pragma omp parallel for schedule(static) reduction(min : outside) num_threads(threads) if (threads > 1 && n > (1 << 14))
   for (std::int64_t i = 0; i < n; ++i) {
     double xyz[3];
     coordinates_of(points, static_cast<std::size_t>(i), xyz);
     first[static_cast<std::size_t>(i) + 1] = box.image_count(xyz);
+    if (check)
+      for (int a = 0; a < points.dims(); ++a)
+        if (box.period[a] > 0 && !(xyz[a] >= 0 && xyz[a] < box.period[a])) outside = std::min(outside, i);
+  }
+  if (outside < n) {
+    double xyz[3];
+    coordinates_of(points, static_cast<std::size_t>(outside), xyz);
+    throw_outside_box("point", outside, xyz, points.dims(), options);
   }
   inclusive_scan(first.data() + 1, points.size(), threads);
   return first;
@@ -220,12 +231,12 @@ NeighborList search_periodic(PointView points, Backend backend, const SearchOpti
   }
   Stopwatch clock;  // the grid's time covers the checks and images too
   const int threads = backend == Backend::serial ? 1 : options.threads > 0 ? options.threads : omp_get_max_threads();
-  validate_box(points, options, "point", nullptr, threads);
+  validate_box_shape(options, points.dims());
   if (points.empty()) return NeighborList({0}, {}, options.half);
   if (backend != Backend::cuda) {
     // The CPU backends sort the images into the cells after the points, each found as its
     // original: the rows come out final.
-    const ScratchBuffer<std::int64_t> first = image_offsets(points, options, threads);
+    const ScratchBuffer<std::int64_t> first = image_offsets(points, options, threads, true);
     const auto count = static_cast<std::size_t>(first.back());
     ScratchBuffer<double> xyz(count * static_cast<std::size_t>(points.dims()));
     ScratchBuffer<point_id> image_of(count);
@@ -240,8 +251,10 @@ NeighborList search_periodic(PointView points, Backend backend, const SearchOpti
     return list;
   }
   // Several GPUs: each part a query search among points and images, the ids mapped after.
+  validate_box(points, options, "point", nullptr, threads);
   const LocalPoints local = local_points({{points, 0}}, options);
-  NeighborList list = search_mapped(local.view(points.dims()), points.size(), local.id_of.data(), points.size(), options, stats);
+  NeighborList list =
+      search_mapped(local.view(points.dims()), points.size(), local.id_of.data(), points.size(), options, stats);
   stats.search_seconds = clock.lap() - stats.grid_seconds;
   return list;
 }
