@@ -40,24 +40,18 @@ CellIndex::CellIndex(PointView points, const Grid& grid, int threads, Images ima
     axis.resize(count_ + padding);
     std::fill(axis.begin() + static_cast<std::ptrdiff_t>(count_), axis.end(), std::numeric_limits<double>::quiet_NaN());
   }
-  if (images.points.empty()) {
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-    for (std::int64_t p = 0; p < n; ++p)
-      for (int a = 0; a < 3; ++a)
-        sorted_[a][static_cast<std::size_t>(p)] = a < grid_.dims ? points(static_cast<std::size_t>(order_[p]), a) : 0.0;
-    return;
-  }
-
   // Images: a cell's rows end at its first image (the sort is stable, images come last), and
   // each image takes the id of the point it copies.
-  const auto cells = static_cast<std::int64_t>(occupied_cells());
   const auto rows = static_cast<point_id>(rows_);
-  cell_rows_end_.resize(static_cast<std::size_t>(cells));
+  if (!images.points.empty()) {
+    const auto cells = static_cast<std::int64_t>(occupied_cells());
+    cell_rows_end_.resize(static_cast<std::size_t>(cells));
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-  for (std::int64_t c = 0; c < cells; ++c) {
-    const point_id* first = order_.data() + cell_begin_[c];
-    const point_id* last = order_.data() + cell_begin_[c + 1];
-    cell_rows_end_[c] = std::lower_bound(first, last, rows) - order_.data();
+    for (std::int64_t c = 0; c < cells; ++c) {
+      const point_id* first = order_.data() + cell_begin_[c];
+      const point_id* last = order_.data() + cell_begin_[c + 1];
+      cell_rows_end_[c] = std::lower_bound(first, last, rows) - order_.data();
+    }
   }
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
   for (std::int64_t p = 0; p < n; ++p) {
