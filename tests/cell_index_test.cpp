@@ -56,8 +56,8 @@ TEST(CellIndex, ImagesHoldNoRowAndCarryTheirOriginalsIds) {
         const point_id id = index.order()[static_cast<std::size_t>(p)];
         (p < rows_end ? rows : images).push_back(id);
         // Each slot keeps its own coordinates: an image's are not its original's.
-        const std::size_t local = p < rows_end ? static_cast<std::size_t>(id)
-                                               : 6 + static_cast<std::size_t>(std::find(image_of.begin(), image_of.end(), id) - image_of.begin());
+        const auto image = std::find(image_of.begin(), image_of.end(), id) - image_of.begin();
+        const std::size_t local = p < rows_end ? static_cast<std::size_t>(id) : 6 + static_cast<std::size_t>(image);
         EXPECT_EQ(index.coords(0)[static_cast<std::size_t>(p)], xyz[2 * local]);
       }
     }

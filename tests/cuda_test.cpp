@@ -187,7 +187,8 @@ TEST(Cuda, DeviceResidentPeriodicSearchEqualsBruteForce) {
     for (bool half : {false, true}) {
       options.half = half;
       const NeighborList expected = brute_force(points.view(), options);
-      EXPECT_EQ(search_device(device_xyz, points.size(), dims, options).to_host(half), expected) << dims << "-D " << half;
+      EXPECT_EQ(search_device(device_xyz, points.size(), dims, options).to_host(half), expected)
+          << dims << "-D " << half;
     }
     points.xyz[static_cast<std::size_t>(dims) * 1234] = 1.0;  // x = period: outside [0, 1)
     ASSERT_EQ(cudaMemcpy(device_xyz, points.xyz.data(), bytes, cudaMemcpyHostToDevice), cudaSuccess);

@@ -44,7 +44,8 @@ struct Pool {
 // Lists: 32 MB and up (glibc maps larger blocks afresh at every malloc: its mmap threshold stops
 // there), a search's offsets and indices.
 Pool& list_pool() {
-  static auto* pool = new Pool(std::size_t{32} << 20, 2, 4);  // never destroyed: lists may be freed by static destructors
+  // Never destroyed: lists may be freed by static destructors.
+  static auto* pool = new Pool(std::size_t{32} << 20, 2, 4);
   return *pool;
 }
 
@@ -58,7 +59,8 @@ Pool& scratch_pool() {
 
 std::size_t held_limit(const Pool& pool) {
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
-  return pages > 0 && page > 0 ? static_cast<std::size_t>(pages) * static_cast<std::size_t>(page) / pool.memory_share : 0;
+  if (pages <= 0 || page <= 0) return 0;
+  return static_cast<std::size_t>(pages) * static_cast<std::size_t>(page) / static_cast<std::size_t>(pool.memory_share);
 }
 
 void* allocate_block(std::size_t bytes) {

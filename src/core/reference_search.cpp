@@ -49,8 +49,8 @@ void validate_box(PointView points, const SearchOptions& options, const char* wh
   // The first point outside the box, on all threads; then its message.
   const auto n = static_cast<std::int64_t>(points.size());
   std::int64_t outside = n;
-#pragma omp parallel for schedule(static) reduction(min : outside) num_threads(threads > 0 ? threads : omp_get_max_threads()) \
-    if (threads != 1 && n > (1 << 14))
+#pragma omp parallel for schedule(static) reduction(min : outside) \
+    num_threads(threads > 0 ? threads : omp_get_max_threads()) if (threads != 1 && n > (1 << 14))
   for (std::int64_t i = 0; i < n; ++i)
     for (int a = 0; a < points.dims(); ++a) {
       const double x = points(static_cast<std::size_t>(i), a);
@@ -79,7 +79,8 @@ ScratchBuffer<std::int64_t> image_offsets(PointView points, const SearchOptions&
   ScratchBuffer<std::int64_t> first(points.size() + 1);
   first[0] = 0;
   std::int64_t outside = n;
-#pragma omp parallel for schedule(static) reduction(min : outside) num_threads(threads) if (threads > 1 && n > (1 << 14))
+#pragma omp parallel for schedule(static) reduction(min : outside) num_threads(threads) \
+    if (threads > 1 && n > (1 << 14))
   for (std::int64_t i = 0; i < n; ++i) {
     double xyz[3];
     coordinates_of(points, static_cast<std::size_t>(i), xyz);

@@ -74,8 +74,8 @@ struct PointsWithImages {
   std::size_t images;
 };
 
-PointsWithImages append_images_on_device(const double* points, std::size_t n, const PeriodicBox& box, cudaStream_t stream,
-                               MemoryMeter& meter) {
+PointsWithImages append_images_on_device(const double* points, std::size_t n, const PeriodicBox& box,
+                                         cudaStream_t stream, MemoryMeter& meter) {
   DeviceArray<std::int64_t> counts(n, meter), first(n + 1, meter);
   count_images<<<blocks_for(n), block_size, 0, stream>>>(points, static_cast<std::int64_t>(n), box, counts.get());
   check_launch("count_images");
@@ -93,9 +93,10 @@ PointsWithImages append_images_on_device(const double* points, std::size_t n, co
     throw Error("the points and their periodic images must be fewer than 2^31 - 1");
 
   const auto dims = static_cast<std::size_t>(box.dims), total = n + static_cast<std::size_t>(images);
-  PointsWithImages out{DeviceArray<double>(total * dims, meter), DeviceArray<point_id>(static_cast<std::size_t>(images), meter),
-                       static_cast<std::size_t>(images)};
-  HORIZON_CUDA_CHECK(cudaMemcpyAsync(out.xyz.get(), points, n * dims * sizeof(double), cudaMemcpyDeviceToDevice, stream));
+  PointsWithImages out{DeviceArray<double>(total * dims, meter),
+                       DeviceArray<point_id>(static_cast<std::size_t>(images), meter), static_cast<std::size_t>(images)};
+  HORIZON_CUDA_CHECK(
+      cudaMemcpyAsync(out.xyz.get(), points, n * dims * sizeof(double), cudaMemcpyDeviceToDevice, stream));
   write_images<<<blocks_for(n), block_size, 0, stream>>>(points, static_cast<std::int64_t>(n), box, first.get(),
                                                          out.xyz.get() + n * dims, out.image_of.get());
   check_launch("write_images");

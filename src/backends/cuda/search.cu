@@ -94,7 +94,8 @@ Counts count_offsets(const DeviceIndex& index, const SearchOptions& options, std
   args.long_rows = reinterpret_cast<unsigned long long*>(summary.get() + 4);
   const DeviceIndexView ix = index.view(options.queries);
   with_shape(options.metric, ix.grid.dims, options.half, [&](auto m, auto d, auto h) {
-    count_families<HORIZON_SHAPE(m, d, h)><<<blocks_for(static_cast<std::size_t>(ix.n)), block_size, 0, stream>>>(ix, args);
+    const unsigned blocks = blocks_for(static_cast<std::size_t>(ix.n));  // images too: their counts are 0
+    count_families<HORIZON_SHAPE(m, d, h)><<<blocks, block_size, 0, stream>>>(ix, args);
   });
   check_launch("count_families");
   HORIZON_CUDA_CHECK(cudaMemsetAsync(offsets.get(), 0, sizeof(std::int64_t), stream));
