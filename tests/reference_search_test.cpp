@@ -42,6 +42,14 @@ std::vector<BoxedDataset> boxed(int dims) {
   for (int i = 0; i < 400; ++i)
     for (int a = 0; a < dims; ++a) faces.xyz.push_back(i % 2 ? near(rng) : std::nextafter(4.0, 0.0) - near(rng));
   all.push_back({"faces", faces, 1.999, {4, 4, dims == 3 ? 4.0 : 0.0}});
+  // A few points near the corners of a huge box: the grid is sparse (cells looked up by
+  // coordinates, not by a table), and every pair is across a face.
+  PointSet corners{dims, {}};
+  const double huge = 1e8;
+  std::uniform_real_distribution<double> offset(0.0, 2000.0);
+  for (int i = 0; i < 300; ++i)
+    for (int a = 0; a < dims; ++a) corners.xyz.push_back((i >> a) % 2 ? offset(rng) : huge - offset(rng));
+  all.push_back({"sparse_corners", corners, 1500.0, {huge, huge, dims == 3 ? huge : 0.0}});
   return all;
 }
 
