@@ -21,6 +21,13 @@ struct PeriodicBox {
     }
   }
 
+  /// Whether the point at xyz[0 .. dims) lies in [0, period) on every periodic axis.
+  HORIZON_HOST_DEVICE bool contains(const double* xyz) const {
+    for (int a = 0; a < dims; ++a)
+      if (period[a] > 0 && !(xyz[a] >= 0 && xyz[a] < period[a])) return false;
+    return true;
+  }
+
   /// The shifts along axis a of the images of a point at x: 0, then +period near the low face
   /// and -period near the high one; returns how many (1 to 3).
   HORIZON_HOST_DEVICE int axis_shifts(int a, double x, double* shifts) const {

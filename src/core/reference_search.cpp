@@ -42,33 +42,36 @@ void throw_outside_box(const char* which, std::int64_t id, const double* xyz, in
                   std::to_string(xyz[a]) + ", outside the periodic box [0, " + std::to_string(box[a]) + ")");
 }
 
-void validate_box(PointView points, const SearchOptions& options, const char* which,
-                  const std::int64_t* ids, int threads) {
-  const auto& box = options.box;
-  validate_box_shape(options, points.dims());
-  // The first point outside the box, on all threads; then its message.
-  const auto n = static_cast<std::int64_t>(points.size());
-  std::int64_t outside = n;
-#pragma omp parallel for schedule(static) reduction(min : outside) \
-    num_threads(threads > 0 ? threads : omp_get_max_threads()) if (threads != 1 && n > (1 << 14))
-  for (std::int64_t i = 0; i < n; ++i)
-    for (int a = 0; a < points.dims(); ++a) {
-      const double x = points(static_cast<std::size_t>(i), a);
-      if (box[a] > 0 && !(x >= 0 && x < box[a])) outside = std::min(outside, i);
-    }
-  if (outside == n) return;
-  const auto i = static_cast<std::size_t>(outside);
-  double xyz[3];
-  for (int a = 0; a < points.dims(); ++a) xyz[a] = points(i, a);
-  throw_outside_box(which, ids ? ids[i] : outside, xyz, points.dims(), options);
-}
-
 namespace {
 
 /// Point i's coordinates, as PeriodicBox reads them.
 void coordinates_of(PointView points, std::size_t i, double* xyz) {
   for (int a = 0; a < points.dims(); ++a) xyz[a] = points(i, a);
 }
+
+}  // namespace
+
+void validate_box(PointView points, const SearchOptions& options, const char* which,
+                  const std::int64_t* ids, int threads) {
+  validate_box_shape(options, points.dims());
+  // The first point outside the box, on all threads; then its message.
+  const PeriodicBox box(options, points.dims());
+  const auto n = static_cast<std::int64_t>(points.size());
+  std::int64_t outside = n;
+#pragma omp parallel for schedule(static) reduction(min : outside) \
+    num_threads(threads > 0 ? threads : omp_get_max_threads()) if (threads != 1 && n > (1 << 14))
+  for (std::int64_t i = 0; i < n; ++i) {
+    double xyz[3];
+    coordinates_of(points, static_cast<std::size_t>(i), xyz);
+    if (!box.contains(xyz)) outside = std::min(outside, i);
+  }
+  if (outside == n) return;
+  double xyz[3];
+  coordinates_of(points, static_cast<std::size_t>(outside), xyz);
+  throw_outside_box(which, ids ? ids[outside] : outside, xyz, points.dims(), options);
+}
+
+namespace {
 
 /// The images append_images writes, as offsets: point i's from first[i] to first[i + 1]. With
 /// `check`, the points are validated against the box in the same pass (validate_box's error).
@@ -85,9 +88,7 @@ ScratchBuffer<std::int64_t> image_offsets(PointView points, const SearchOptions&
     double xyz[3];
     coordinates_of(points, static_cast<std::size_t>(i), xyz);
     first[static_cast<std::size_t>(i) + 1] = box.image_count(xyz);
-    if (check)
-      for (int a = 0; a < points.dims(); ++a)
-        if (box.period[a] > 0 && !(xyz[a] >= 0 && xyz[a] < box.period[a])) outside = std::min(outside, i);
+    if (check && !box.contains(xyz)) outside = std::min(outside, i);
   }
   if (outside < n) {
     double xyz[3];
@@ -134,14 +135,25 @@ void append_images(PointView points, const SearchOptions& options, PointSet& loc
 
 namespace {
 
-/// Local points written once, in parallel, into storage that is not zeroed first (on a VM each
-/// fresh page costs a fault: filling a vector, then growing it for the images, cost more than
-/// the search): sets of points one after another, then the images of the last set.
+/// Points and the id each stands for (-1: none), in storage written once, in parallel, and not
+/// zeroed first (on a VM each fresh page costs a fault: filling a vector, then growing it for
+/// the images, cost more than the search).
 struct LocalPoints {
   ScratchBuffer<double> xyz;
-  ScratchBuffer<point_id> id_of;  ///< the id each local point stands for (-1: none)
+  ScratchBuffer<point_id> id_of;
   PointView view(int dims) const { return PointView(xyz.data(), id_of.size(), dims); }
 };
+
+/// The periodic images of `points` alone (ids: their originals' indices), the points checked
+/// against the box in the same pass.
+LocalPoints images_of(PointView points, const SearchOptions& options, int threads) {
+  const ScratchBuffer<std::int64_t> first = image_offsets(points, options, threads, true);
+  const auto count = static_cast<std::size_t>(first.back());
+  LocalPoints images{ScratchBuffer<double>(count * static_cast<std::size_t>(points.dims())),
+                     ScratchBuffer<point_id>(count)};
+  write_images(points, options, first, images.xyz.data(), images.id_of.data(), 0, threads);
+  return images;
+}
 
 /// `sets` (each with the id of its first point, or -1 for "no id") one after another, then the
 /// periodic images of the last set (ids as that set's) when options.box is periodic.
@@ -237,15 +249,11 @@ NeighborList search_periodic(PointView points, Backend backend, const SearchOpti
   if (backend != Backend::cuda) {
     // The CPU backends sort the images into the cells after the points, each found as its
     // original: the rows come out final.
-    const ScratchBuffer<std::int64_t> first = image_offsets(points, options, threads, true);
-    const auto count = static_cast<std::size_t>(first.back());
-    ScratchBuffer<double> xyz(count * static_cast<std::size_t>(points.dims()));
-    ScratchBuffer<point_id> image_of(count);
-    write_images(points, options, first, xyz.data(), image_of.data(), 0, threads);
+    const LocalPoints made = images_of(points, options, threads);
     const double images_seconds = clock.lap();
     SearchOptions inner = options;
     inner.box = {0, 0, 0};
-    const Images images{PointView(xyz.data(), count, points.dims()), image_of};
+    const Images images{made.view(points.dims()), made.id_of};
     NeighborList list = backend == Backend::serial ? search_serial(points, inner, stats, images)
                                                    : search_openmp(points, inner, stats, images);
     stats.grid_seconds += images_seconds;

@@ -40,10 +40,7 @@ __global__ void write_images(const double* xyz, std::int64_t n, PeriodicBox box,
 __global__ void first_outside(const double* xyz, std::int64_t n, PeriodicBox box, unsigned long long* first) {
   const std::int64_t i = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
   if (i >= n) return;
-  for (int a = 0; a < box.dims; ++a) {
-    const double x = xyz[i * box.dims + a];
-    if (box.period[a] > 0 && !(x >= 0 && x < box.period[a])) atomicMin(first, static_cast<unsigned long long>(i));
-  }
+  if (!box.contains(xyz + i * box.dims)) atomicMin(first, static_cast<unsigned long long>(i));
 }
 
 /// The host search's check (validate_box) for points already on the GPU: the same error, naming
