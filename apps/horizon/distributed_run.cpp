@@ -147,9 +147,9 @@ void run_distributed(const SearchArgs& args) {
       // Filters and ParaView output on rank 0, as a one-node search applies them.
       const double reach = bond_reach(options.search, all.dims);
       if (!filters.empty())
-        list = args.queries.empty() ? filter_bonds(list, all.view(), filters, reach, args.threads)
-                                    : filter_bonds(list, queries.view(), all.view(), filters, reach, args.threads);
-      if (!block_pairs.pairs.empty()) list = filter_blocks(list, all.blocks, block_pairs, args.threads);
+        list = args.queries.empty() ? filter_bonds(std::move(list), all.view(), filters, reach, args.threads)
+                                    : filter_bonds(std::move(list), queries.view(), all.view(), filters, reach, args.threads);
+      if (!block_pairs.pairs.empty()) list = filter_blocks(std::move(list), all.blocks, block_pairs, args.threads);
       total = list.total();
       filter_seconds = clock.lap();
       if (!args.out.empty())

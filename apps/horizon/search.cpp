@@ -83,12 +83,12 @@ void run_search(const SearchArgs& args) {
   if (!filters.empty()) {
     progress.say("applying " + std::to_string(filters.size()) + " bond filters");
     const double reach = bond_reach(options, points.dims);
-    list = args.queries.empty() ? filter_bonds(list, references.view(), filters, reach, args.threads)
-                                : filter_bonds(list, queries.view(), references.view(), filters, reach, args.threads);
+    list = args.queries.empty() ? filter_bonds(std::move(list), references.view(), filters, reach, args.threads)
+                                : filter_bonds(std::move(list), queries.view(), references.view(), filters, reach, args.threads);
   }
   if (!block_pairs.pairs.empty()) {
     progress.say("keeping the bonds of " + std::to_string(block_pairs.pairs.size()) + " block pairs");
-    list = filter_blocks(list, references.blocks, block_pairs, args.threads);
+    list = filter_blocks(std::move(list), references.blocks, block_pairs, args.threads);
   }
   const double filter_seconds = clock.lap();
   const std::int64_t entries = streamed < 0 ? list.total() : streamed;

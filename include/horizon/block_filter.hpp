@@ -22,10 +22,11 @@ struct BlockPairs {
 /// `list` without the bonds i-j whose blocks {row_blocks[i], column_blocks[j]} are not one of
 /// `pairs`; rows keep their order. `column_blocks` gives the block of every point the ids index
 /// (a query list's references); the overload without it is for a list of one point set.
-/// Error when the row blocks do not match the list, or a pair names a block no point is in.
-NeighborList filter_blocks(const NeighborList& list, const std::vector<std::int32_t>& row_blocks,
+/// Error when the row blocks do not match the list, or a pair names a block no point is in. A
+/// list passed with std::move is filtered in its own arrays.
+NeighborList filter_blocks(NeighborList list, const std::vector<std::int32_t>& row_blocks,
                            const std::vector<std::int32_t>& column_blocks, const BlockPairs& pairs, int threads = 0);
-NeighborList filter_blocks(const NeighborList& list, const std::vector<std::int32_t>& blocks, const BlockPairs& pairs,
+NeighborList filter_blocks(NeighborList list, const std::vector<std::int32_t>& blocks, const BlockPairs& pairs,
                            int threads = 0);
 
 }  // namespace horizon

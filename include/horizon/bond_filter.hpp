@@ -45,11 +45,12 @@ bool cuts(const BondFilter& filter, const double* a, const double* b);
 /// list's points and `columns` the points its ids index (a query list); the overload without
 /// `columns` is for a list of one point set. 2-D points lie in z = 0. `reach`: no bond of the
 /// list is longer (bond_reach() of the search; 0: unknown), so rows of points farther than it
-/// from every shape are kept whole without tests. `threads` 0: all cores.
+/// from every shape are kept whole without tests. `threads` 0: all cores. A list passed with
+/// std::move is filtered in its own arrays (no second list is allocated).
 /// Throws for more than max_bond_filters filters.
-NeighborList filter_bonds(const NeighborList& list, PointView rows, PointView columns,
+NeighborList filter_bonds(NeighborList list, PointView rows, PointView columns,
                           const std::vector<BondFilter>& filters, double reach = 0, int threads = 0);
-NeighborList filter_bonds(const NeighborList& list, PointView points, const std::vector<BondFilter>& filters,
+NeighborList filter_bonds(NeighborList list, PointView points, const std::vector<BondFilter>& filters,
                           double reach = 0, int threads = 0);
 
 /// The longest bond a search can give, for filter_bonds' `reach`.

@@ -5,6 +5,7 @@
 /// a half list keeps each pair once, in the row of its smaller id.
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "horizon/buffer.hpp"
@@ -35,6 +36,14 @@ public:
   /// CSR arrays: offsets has size()+1 entries, indices has total().
   const Buffer<std::int64_t>& offsets() const { return offsets_; }
   const Buffer<point_id>& indices() const { return indices_; }
+
+  /// Gives up the CSR arrays (the list is left empty), for filters that reuse them in place.
+  std::pair<Buffer<std::int64_t>, Buffer<point_id>> release() && {
+    std::pair<Buffer<std::int64_t>, Buffer<point_id>> arrays{std::move(offsets_), std::move(indices_)};
+    offsets_.assign(1, 0);
+    indices_.clear();
+    return arrays;
+  }
 
   friend bool operator==(const NeighborList&, const NeighborList&) = default;
 

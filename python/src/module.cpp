@@ -141,10 +141,10 @@ OwnedList filter_bonds(py::array_t<std::int64_t> offsets, py::array_t<std::int32
                        py::array points, std::optional<py::array> references, const std::string& json,
                        const std::string& source, int threads) {
   const auto filters = horizon::parse_bond_filters(json, source);
-  const horizon::NeighborList list = list_of(offsets, indices, half);
+  horizon::NeighborList list = list_of(offsets, indices, half);
   const horizon::PointView rows = point_view(points), columns = references ? point_view(*references) : rows;
   py::gil_scoped_release unlocked;
-  return OwnedList{horizon::filter_bonds(list, rows, columns, filters, 0, threads)};
+  return OwnedList{horizon::filter_bonds(std::move(list), rows, columns, filters, 0, threads)};
 }
 
 /// The list without the bonds between blocks that are not one of `pairs` ("1-1,1-2").
@@ -152,9 +152,9 @@ OwnedList filter_blocks(py::array_t<std::int64_t> offsets, py::array_t<std::int3
                         const std::vector<std::int32_t>& blocks, const std::vector<std::int32_t>& reference_blocks,
                         const std::string& pairs, int threads) {
   const horizon::BlockPairs block_pairs = horizon::BlockPairs::parse(pairs);
-  const horizon::NeighborList list = list_of(offsets, indices, half);
+  horizon::NeighborList list = list_of(offsets, indices, half);
   py::gil_scoped_release unlocked;
-  return OwnedList{horizon::filter_blocks(list, blocks, reference_blocks, block_pairs, threads)};
+  return OwnedList{horizon::filter_blocks(std::move(list), blocks, reference_blocks, block_pairs, threads)};
 }
 
 /// points: `count` x `dims` C-contiguous float64 in GPU memory at `pointer`; the list is built on

@@ -41,7 +41,7 @@ BlockPairs BlockPairs::parse(const std::string& text) {
   return result;
 }
 
-NeighborList filter_blocks(const NeighborList& list, const std::vector<std::int32_t>& row_blocks,
+NeighborList filter_blocks(NeighborList list, const std::vector<std::int32_t>& row_blocks,
                            const std::vector<std::int32_t>& column_blocks, const BlockPairs& pairs, int threads) {
   if (row_blocks.size() != list.size())
     throw Error("blocks: " + std::to_string(row_blocks.size()) + " block ids for " + std::to_string(list.size()) +
@@ -74,14 +74,14 @@ NeighborList filter_blocks(const NeighborList& list, const std::vector<std::int3
     std::transform(column_blocks.begin(), column_blocks.end(), column_block.begin(), dense);
   }
   return detail::select_entries(
-      list, [&](std::size_t i) { return allows_all[row_block[i]] != 0; },
+      std::move(list), [&](std::size_t i) { return allows_all[row_block[i]] != 0; },
       [&](std::size_t i, point_id j) { return allowed[row_block[i] * count + column_block[static_cast<std::size_t>(j)]] != 0; },
       threads > 0 ? threads : omp_get_max_threads());
 }
 
-NeighborList filter_blocks(const NeighborList& list, const std::vector<std::int32_t>& blocks, const BlockPairs& pairs,
+NeighborList filter_blocks(NeighborList list, const std::vector<std::int32_t>& blocks, const BlockPairs& pairs,
                            int threads) {
-  return filter_blocks(list, blocks, blocks, pairs, threads);
+  return filter_blocks(std::move(list), blocks, blocks, pairs, threads);
 }
 
 }  // namespace horizon

@@ -62,9 +62,10 @@ Vec point(PointView p, std::size_t i) { return {p(i, 0), p(i, 1), p.dims() == 3 
 /// Per point, which filters' planes it lies strictly above and below (bit f), and which it is
 /// near: within `reach` of the plane and of the shape's extent. A bond can only cross filter f
 /// when its ends are not both above nor both below, and, when no longer than `reach`, only when
-/// both are near f (so rows of points near no filter are kept whole).
+/// both are near f (so rows of points near no filter are kept whole). One struct per point: a
+/// bond's test reads its other end's three masks from one cache line.
 struct Sides {
-  std::vector<std::uint64_t> above, below, near;
+  std::uint64_t above = 0, below = 0, near = 0;
 };
 
 bool within_reach(const BondFilter& f, const Vec& x, double side, double reach) {
@@ -79,23 +80,23 @@ bool within_reach(const BondFilter& f, const Vec& x, double side, double reach) 
   return dot(d, d) < (disk.radius + reach) * (disk.radius + reach);
 }
 
-Sides sides_of(PointView points, const std::vector<BondFilter>& filters, double reach, int threads) {
+std::vector<Sides> sides_of(PointView points, const std::vector<BondFilter>& filters, double reach, int threads) {
   const auto n = static_cast<std::int64_t>(points.size());
-  Sides s{std::vector<std::uint64_t>(points.size()), std::vector<std::uint64_t>(points.size()),
-          std::vector<std::uint64_t>(points.size())};
+  std::vector<Sides> sides(points.size());
   // A margin for the rounding of the dot products (bond lengths and offsets are O(reach) here).
   const double padded = reach > 0 ? reach * (1 + 1e-6) : std::numeric_limits<double>::infinity();
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
   for (std::int64_t i = 0; i < n; ++i) {
     const Vec x = point(points, static_cast<std::size_t>(i));
+    Sides& s = sides[static_cast<std::size_t>(i)];
     for (std::size_t f = 0; f < filters.size(); ++f) {
       const double side = dot(minus(x, plane_origin(filters[f])), plane_normal(filters[f]));
-      s.above[i] |= std::uint64_t{side > 0} << f;
-      s.below[i] |= std::uint64_t{side < 0} << f;
-      s.near[i] |= std::uint64_t{within_reach(filters[f], x, side, padded)} << f;
+      s.above |= std::uint64_t{side > 0} << f;
+      s.below |= std::uint64_t{side < 0} << f;
+      s.near |= std::uint64_t{within_reach(filters[f], x, side, padded)} << f;
     }
   }
-  return s;
+  return sides;
 }
 
 }  // namespace
@@ -108,7 +109,7 @@ bool cuts(const BondFilter& filter, const double* a, const double* b) {
 namespace {
 
 /// one_set: `columns` is `rows` (ids and rows index one point set).
-NeighborList filter(const NeighborList& list, PointView rows, PointView columns, bool one_set,
+NeighborList filter(NeighborList list, PointView rows, PointView columns, bool one_set,
                     const std::vector<BondFilter>& filters, double reach, int threads) {
   if (threads <= 0) threads = omp_get_max_threads();
   if (filters.size() > max_bond_filters)
@@ -118,15 +119,16 @@ NeighborList filter(const NeighborList& list, PointView rows, PointView columns,
     throw Error("bond filters: the list has " + std::to_string(list.size()) + " rows for " +
                 std::to_string(rows.size()) + " points");
   if (!(reach >= 0)) throw Error("bond filters: the reach must be >= 0 (0: unknown)");
-  const Sides row_sides = sides_of(rows, filters, reach, threads);
-  const Sides column_sides = one_set ? Sides{} : sides_of(columns, filters, reach, threads);
-  const Sides& col = one_set ? row_sides : column_sides;
+  const std::vector<Sides> row_sides = sides_of(rows, filters, reach, threads);
+  const std::vector<Sides> column_sides = one_set ? std::vector<Sides>{} : sides_of(columns, filters, reach, threads);
+  const Sides* col = one_set ? row_sides.data() : column_sides.data();
 
   const std::uint64_t all = filters.size() == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << filters.size()) - 1;
   // Whether the bond i-j survives every filter whose plane it may cross.
   auto kept = [&](std::size_t i, point_id j) {
-    const std::uint64_t same_side = (row_sides.above[i] & col.above[j]) | (row_sides.below[i] & col.below[j]);
-    std::uint64_t candidates = ~same_side & row_sides.near[i] & col.near[j] & all;
+    const Sides &a_side = row_sides[i], &b_side = col[j];
+    const std::uint64_t same_side = (a_side.above & b_side.above) | (a_side.below & b_side.below);
+    std::uint64_t candidates = ~same_side & a_side.near & b_side.near & all;
     if (!candidates) return true;
     Vec a = point(rows, i), b = point(columns, static_cast<std::size_t>(j));
     if (one_set && static_cast<std::size_t>(j) < i) std::swap(a, b);  // a: the smaller id's end
@@ -136,19 +138,19 @@ NeighborList filter(const NeighborList& list, PointView rows, PointView columns,
   };
 
   // Rows of points near no filter (with a known reach) need no tests.
-  return detail::select_entries(list, [&](std::size_t i) { return row_sides.near[i] == 0; }, kept, threads);
+  return detail::select_entries(std::move(list), [&](std::size_t i) { return row_sides[i].near == 0; }, kept, threads);
 }
 
 }  // namespace
 
-NeighborList filter_bonds(const NeighborList& list, PointView rows, PointView columns,
+NeighborList filter_bonds(NeighborList list, PointView rows, PointView columns,
                           const std::vector<BondFilter>& filters, double reach, int threads) {
-  return filter(list, rows, columns, false, filters, reach, threads);
+  return filter(std::move(list), rows, columns, false, filters, reach, threads);
 }
 
-NeighborList filter_bonds(const NeighborList& list, PointView points, const std::vector<BondFilter>& filters,
+NeighborList filter_bonds(NeighborList list, PointView points, const std::vector<BondFilter>& filters,
                           double reach, int threads) {
-  return filter(list, points, points, true, filters, reach, threads);
+  return filter(std::move(list), points, points, true, filters, reach, threads);
 }
 
 }  // namespace horizon

@@ -1,6 +1,7 @@
 #pragma once
 // A sub-list: the entries of a list that pass a test, rows kept in order. Shared by the bond
 // filters and the Verlet list's refresh.
+#include <algorithm>
 #include <cstring>
 
 #include "parallel_scan.hpp"
@@ -40,6 +41,55 @@ NeighborList select_entries(const NeighborList& list, Whole whole, Keep keep, in
       if (keep(static_cast<std::size_t>(i), j)) *out++ = j;
   }
   return NeighborList(std::move(offsets), std::move(indices), list.is_half());
+}
+
+/// The same in the list's own arrays: no second list, whose fresh pages cost more than the tests
+/// (measured: ten cracks over lattice 100, m = 3.015, 2-core VM). Each entry is tested once:
+/// rows are first compacted where they lie, then moved down to their new offsets.
+template <class Whole, class Keep>
+NeighborList select_entries(NeighborList&& list, Whole whole, Keep keep, int threads) {
+  const bool half = list.is_half();
+  auto [old_offsets, indices] = std::move(list).release();
+  const auto n = static_cast<std::int64_t>(old_offsets.size()) - 1;
+  Buffer<std::int64_t> offsets(old_offsets.size());
+  offsets[0] = 0;
+#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads) if (threads > 1)
+  for (std::int64_t i = 0; i < n; ++i) {
+    std::int64_t count = old_offsets[i + 1] - old_offsets[i];
+    if (!whole(static_cast<std::size_t>(i))) {
+      point_id* row = indices.data() + old_offsets[i];
+      const std::int64_t size = count;
+      count = 0;
+      for (std::int64_t e = 0; e < size; ++e)
+        if (keep(static_cast<std::size_t>(i), row[e])) row[count++] = row[e];
+    }
+    offsets[i + 1] = count;
+  }
+  inclusive_scan(offsets.data(), offsets.size(), threads);
+  if (offsets[n] == old_offsets[n]) return NeighborList(std::move(old_offsets), std::move(indices), half);
+
+  // Rows move down (offsets[i] <= old_offsets[i]): each chunk of rows in parallel to where its
+  // first row lies, then the chunks in order to their places.
+  const std::int64_t chunks = std::max(1, threads);
+  auto chunk_first = [&](std::int64_t t) { return n * t / chunks; };
+#pragma omp parallel for schedule(static, 1) num_threads(threads) if (threads > 1)
+  for (std::int64_t t = 0; t < chunks; ++t) {
+    std::int64_t to = old_offsets[chunk_first(t)];
+    for (std::int64_t i = chunk_first(t); i < chunk_first(t + 1); ++i) {
+      const std::int64_t size = offsets[i + 1] - offsets[i];
+      if (to != old_offsets[i] && size > 0)
+        std::memmove(indices.data() + to, indices.data() + old_offsets[i], static_cast<std::size_t>(size) * sizeof(point_id));
+      to += size;
+    }
+  }
+  for (std::int64_t t = 0; t < chunks; ++t) {
+    const std::int64_t from = old_offsets[chunk_first(t)], to = offsets[chunk_first(t)];
+    const std::int64_t size = offsets[chunk_first(t + 1)] - to;
+    if (from != to && size > 0)
+      std::memmove(indices.data() + to, indices.data() + from, static_cast<std::size_t>(size) * sizeof(point_id));
+  }
+  indices.resize(static_cast<std::size_t>(offsets[n]));
+  return NeighborList(std::move(offsets), std::move(indices), half);
 }
 
 }  // namespace horizon::detail

@@ -1,0 +1,53 @@
+// Sub-lists: the in-place selection (the filters' path for a list passed with std::move) against
+// the copying one, on rows of every kind and thread counts whose chunks split rows unevenly.
+#include "core/select_entries.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <random>
+
+namespace horizon {
+namespace {
+
+/// Rows of 0..40 ids (some empty), ids 0..999.
+NeighborList random_list(std::size_t rows, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  Buffer<std::int64_t> offsets(rows + 1);
+  Buffer<point_id> indices;
+  offsets[0] = 0;
+  for (std::size_t i = 0; i < rows; ++i) {
+    const auto size = static_cast<std::size_t>(rng() % 41);
+    for (std::size_t e = 0; e < size; ++e) indices.push_back(static_cast<point_id>(rng() % 1000));
+    offsets[i + 1] = static_cast<std::int64_t>(indices.size());
+  }
+  return NeighborList(std::move(offsets), std::move(indices), false);
+}
+
+TEST(SelectEntries, InPlaceEqualsTheCopyForEveryThreadCount) {
+  const NeighborList list = random_list(5000, 1);
+  // Rows kept whole (every 3rd), rows emptied (every 7th), the rest losing odd ids; the first
+  // rows keep everything, so the first chunk does not move.
+  auto whole = [](std::size_t i) { return i % 3 == 0 || i < 100; };
+  auto keep = [](std::size_t i, point_id j) { return i % 7 != 0 && j % 2 == 0; };
+  const NeighborList expected = detail::select_entries(list, whole, keep, 1);
+  ASSERT_LT(expected.total(), list.total());
+  for (const int threads : {1, 2, 3, 7, 16}) {
+    const NeighborList selected = detail::select_entries(NeighborList(list), whole, keep, threads);
+    EXPECT_EQ(selected, expected) << threads << " threads";
+  }
+}
+
+TEST(SelectEntries, InPlaceKeepsAListThatLosesNothing) {
+  const NeighborList list = random_list(1000, 2);
+  const NeighborList selected = detail::select_entries(
+      NeighborList(list), [](std::size_t) { return false; }, [](std::size_t, point_id) { return true; }, 4);
+  EXPECT_EQ(selected, list);
+  const NeighborList emptied = detail::select_entries(
+      NeighborList(list), [](std::size_t) { return false; }, [](std::size_t, point_id) { return false; }, 4);
+  EXPECT_EQ(emptied.total(), 0);
+  EXPECT_EQ(emptied.size(), list.size());
+}
+
+}  // namespace
+}  // namespace horizon
