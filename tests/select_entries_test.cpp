@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <cstring>
 #include <random>
+#include <vector>
 
 namespace horizon {
 namespace {
@@ -47,6 +49,18 @@ TEST(SelectEntries, InPlaceKeepsAListThatLosesNothing) {
       NeighborList(list), [](std::size_t) { return false; }, [](std::size_t, point_id) { return false; }, 4);
   EXPECT_EQ(emptied.total(), 0);
   EXPECT_EQ(emptied.size(), list.size());
+}
+
+TEST(SelectEntries, MovesABlockDownInParallelWavesAsMemmoveWould) {
+  std::vector<point_id> data(3000000);
+  for (std::size_t e = 0; e < data.size(); ++e) data[e] = static_cast<point_id>(e);
+  for (const std::int64_t shift : {std::int64_t{70000}, std::int64_t{300001}, std::int64_t{2000000}}) {
+    std::vector<point_id> moved = data, expected = data;
+    const std::int64_t size = static_cast<std::int64_t>(data.size()) - shift - 5;
+    std::memmove(expected.data() + 3, expected.data() + 3 + shift, static_cast<std::size_t>(size) * sizeof(point_id));
+    detail::move_down(moved.data(), 3, 3 + shift, size, 7);
+    EXPECT_EQ(moved, expected) << "shift " << shift;
+  }
 }
 
 }  // namespace
