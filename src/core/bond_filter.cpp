@@ -126,9 +126,9 @@ NeighborList filter(NeighborList list, PointView rows, PointView columns, bool o
   const std::uint64_t all = filters.size() == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << filters.size()) - 1;
   // Whether the bond i-j survives every filter whose plane it may cross.
   auto kept = [&](std::size_t i, point_id j) {
-    const Sides &a_side = row_sides[i], &b_side = col[j];
-    const std::uint64_t same_side = (a_side.above & b_side.above) | (a_side.below & b_side.below);
-    std::uint64_t candidates = ~same_side & a_side.near & b_side.near & all;
+    const Sides &at_i = row_sides[i], &at_j = col[j];
+    const std::uint64_t same_side = (at_i.above & at_j.above) | (at_i.below & at_j.below);
+    std::uint64_t candidates = ~same_side & at_i.near & at_j.near & all;
     if (!candidates) return true;
     Vec a = point(rows, i), b = point(columns, static_cast<std::size_t>(j));
     if (one_set && static_cast<std::size_t>(j) < i) std::swap(a, b);  // a: the smaller id's end
