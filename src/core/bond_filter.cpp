@@ -1,5 +1,6 @@
 #include "horizon/bond_filter.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -23,38 +24,64 @@ Vec cross(const Vec& a, const Vec& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 
-const Vec& plane_origin(const BondFilter& f) {
-  return std::holds_alternative<RectangleFilter>(f) ? std::get<RectangleFilter>(f).lower_left_corner
-                                                    : std::get<DiskFilter>(f).center;
-}
-const Vec& plane_normal(const BondFilter& f) {
-  return std::holds_alternative<RectangleFilter>(f) ? std::get<RectangleFilter>(f).normal
-                                                    : std::get<DiskFilter>(f).normal;
+/// A filter with what each test needs worked out once: its plane, and for a rectangle the
+/// direction of its side (bottom x normal). Every test below computes in the same order as
+/// before this was cached, so results are bit for bit those of the header's convention.
+struct Shape {
+  bool disk = false;
+  Vec origin{}, normal{}, bottom{}, side{};  ///< origin: the rectangle's corner or the disk's centre
+  double bottom_length = 0, side_length = 0, radius = 0;
+};
+
+Shape shape_of(const BondFilter& f) {
+  Shape s;
+  if (const auto* r = std::get_if<RectangleFilter>(&f)) {
+    s.origin = r->lower_left_corner;
+    s.normal = r->normal;
+    s.bottom = r->bottom_unit_vector;
+    s.side = cross(r->bottom_unit_vector, r->normal);
+    s.bottom_length = r->bottom_length;
+    s.side_length = r->side_length;
+  } else {
+    const DiskFilter& d = std::get<DiskFilter>(f);
+    s.disk = true;
+    s.origin = d.center;
+    s.normal = d.normal;
+    s.radius = d.radius;
+  }
+  return s;
 }
 
+/// The signed distance of x to the shape's plane.
+double side_of(const Shape& s, const Vec& x) { return dot(minus(x, s.origin), s.normal); }
+
 /// Where the bond a-b meets the filter's plane (the header's convention), if it does.
-std::optional<Vec> meets_plane(const BondFilter& f, const Vec& a, const Vec& b) {
-  const double sa = dot(minus(a, plane_origin(f)), plane_normal(f));
-  const double sb = dot(minus(b, plane_origin(f)), plane_normal(f));
+std::optional<Vec> meets_plane(const Shape& s, const Vec& a, const Vec& b) {
+  const double sa = side_of(s, a), sb = side_of(s, b);
   if ((sa > 0 && sb > 0) || (sa < 0 && sb < 0) || (sa == 0 && sb == 0)) return std::nullopt;
   const double t = sa / (sa - sb);
   return Vec{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
 }
 
-/// x's coordinates along the rectangle's bottom and side, from its lower left corner.
-std::pair<double, double> rectangle_coordinates(const RectangleFilter& f, const Vec& x) {
-  const Vec r = minus(x, f.lower_left_corner);
-  return {dot(r, f.bottom_unit_vector), dot(r, cross(f.bottom_unit_vector, f.normal))};
+/// x's coordinates along a rectangle's bottom and side, from its lower left corner.
+std::pair<double, double> rectangle_coordinates(const Shape& s, const Vec& x) {
+  const Vec r = minus(x, s.origin);
+  return {dot(r, s.bottom), dot(r, s.side)};
 }
 
-bool inside(const RectangleFilter& f, const Vec& x) {
-  const auto [along_bottom, along_side] = rectangle_coordinates(f, x);
-  return along_bottom >= 0 && along_bottom <= f.bottom_length && along_side >= 0 && along_side <= f.side_length;
+/// Whether x, in the shape's plane, lies on the shape.
+bool inside(const Shape& s, const Vec& x) {
+  if (s.disk) {
+    const Vec r = minus(x, s.origin);
+    return dot(r, r) < s.radius * s.radius;
+  }
+  const auto [along_bottom, along_side] = rectangle_coordinates(s, x);
+  return along_bottom >= 0 && along_bottom <= s.bottom_length && along_side >= 0 && along_side <= s.side_length;
 }
 
-bool inside(const DiskFilter& f, const Vec& x) {
-  const Vec r = minus(x, f.center);
-  return dot(r, r) < f.radius * f.radius;
+bool cuts(const Shape& s, const Vec& a, const Vec& b) {
+  const std::optional<Vec> x = meets_plane(s, a, b);
+  return x && inside(s, *x);
 }
 
 Vec point(PointView p, std::size_t i) { return {p(i, 0), p(i, 1), p.dims() == 3 ? p(i, 2) : 0.0}; }
@@ -68,19 +95,18 @@ struct Sides {
   std::uint64_t above = 0, below = 0, near = 0;
 };
 
-bool within_reach(const BondFilter& f, const Vec& x, double side, double reach) {
+bool within_reach(const Shape& s, const Vec& x, double side, double reach) {
   if (!(std::abs(side) < reach)) return false;
-  if (const auto* r = std::get_if<RectangleFilter>(&f)) {
-    const auto [along_bottom, along_side] = rectangle_coordinates(*r, x);
-    return along_bottom > -reach && along_bottom < r->bottom_length + reach && along_side > -reach &&
-           along_side < r->side_length + reach;
+  if (!s.disk) {
+    const auto [along_bottom, along_side] = rectangle_coordinates(s, x);
+    return along_bottom > -reach && along_bottom < s.bottom_length + reach && along_side > -reach &&
+           along_side < s.side_length + reach;
   }
-  const DiskFilter& disk = std::get<DiskFilter>(f);
-  const Vec d = minus(x, disk.center);
-  return dot(d, d) < (disk.radius + reach) * (disk.radius + reach);
+  const Vec d = minus(x, s.origin);
+  return dot(d, d) < (s.radius + reach) * (s.radius + reach);
 }
 
-std::vector<Sides> sides_of(PointView points, const std::vector<BondFilter>& filters, double reach, int threads) {
+std::vector<Sides> sides_of(PointView points, const std::vector<Shape>& shapes, double reach, int threads) {
   const auto n = static_cast<std::int64_t>(points.size());
   std::vector<Sides> sides(points.size());
   // A margin for the rounding of the dot products (bond lengths and offsets are O(reach) here).
@@ -89,11 +115,11 @@ std::vector<Sides> sides_of(PointView points, const std::vector<BondFilter>& fil
   for (std::int64_t i = 0; i < n; ++i) {
     const Vec x = point(points, static_cast<std::size_t>(i));
     Sides& s = sides[static_cast<std::size_t>(i)];
-    for (std::size_t f = 0; f < filters.size(); ++f) {
-      const double side = dot(minus(x, plane_origin(filters[f])), plane_normal(filters[f]));
+    for (std::size_t f = 0; f < shapes.size(); ++f) {
+      const double side = side_of(shapes[f], x);
       s.above |= std::uint64_t{side > 0} << f;
       s.below |= std::uint64_t{side < 0} << f;
-      s.near |= std::uint64_t{within_reach(filters[f], x, side, padded)} << f;
+      s.near |= std::uint64_t{within_reach(shapes[f], x, side, padded)} << f;
     }
   }
   return sides;
@@ -102,8 +128,7 @@ std::vector<Sides> sides_of(PointView points, const std::vector<BondFilter>& fil
 }  // namespace
 
 bool cuts(const BondFilter& filter, const double* a, const double* b) {
-  const std::optional<Vec> x = meets_plane(filter, {a[0], a[1], a[2]}, {b[0], b[1], b[2]});
-  return x && std::visit([&](const auto& shape) { return inside(shape, *x); }, filter);
+  return cuts(shape_of(filter), {a[0], a[1], a[2]}, {b[0], b[1], b[2]});
 }
 
 namespace {
@@ -119,8 +144,10 @@ NeighborList filter(NeighborList list, PointView rows, PointView columns, bool o
     throw Error("bond filters: the list has " + std::to_string(list.size()) + " rows for " +
                 std::to_string(rows.size()) + " points");
   if (!(reach >= 0)) throw Error("bond filters: the reach must be >= 0 (0: unknown)");
-  const std::vector<Sides> row_sides = sides_of(rows, filters, reach, threads);
-  const std::vector<Sides> column_sides = one_set ? std::vector<Sides>{} : sides_of(columns, filters, reach, threads);
+  std::vector<Shape> shapes(filters.size());
+  std::transform(filters.begin(), filters.end(), shapes.begin(), shape_of);
+  const std::vector<Sides> row_sides = sides_of(rows, shapes, reach, threads);
+  const std::vector<Sides> column_sides = one_set ? std::vector<Sides>{} : sides_of(columns, shapes, reach, threads);
   const Sides* col = one_set ? row_sides.data() : column_sides.data();
 
   const std::uint64_t all = filters.size() == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << filters.size()) - 1;
@@ -133,7 +160,7 @@ NeighborList filter(NeighborList list, PointView rows, PointView columns, bool o
     Vec a = point(rows, i), b = point(columns, static_cast<std::size_t>(j));
     if (one_set && static_cast<std::size_t>(j) < i) std::swap(a, b);  // a: the smaller id's end
     for (; candidates; candidates &= candidates - 1)
-      if (cuts(filters[static_cast<std::size_t>(std::countr_zero(candidates))], a.data(), b.data())) return false;
+      if (cuts(shapes[static_cast<std::size_t>(std::countr_zero(candidates))], a, b)) return false;
     return true;
   };
 
