@@ -26,7 +26,7 @@ const char* radius_rule_name(RadiusRule rule);
 /// (backend, metric, k, box: every radius below half the period). Half lists only with max or
 /// min. Rows come out sorted.
 ///
-/// Points are searched in radius classes (radii within a factor 2 of the class's largest), each
+/// Points are searched in radius classes (radii within a factor 4 of the class's largest), each
 /// as queries among all points at its largest radius, then tested with their own: radii that
 /// span a wide range cost a few searches, never the whole range's stencil at the largest radius.
 /// Throws horizon::Error naming the first bad radius or the bad combination.
