@@ -131,6 +131,29 @@ INSTANTIATE_TEST_SUITE_P(
                        ::testing::Values(2, 3), ::testing::Bool()),
     case_name);
 
+TEST(RadiiThreads, EveryRuleGivesTheSameListOnAnyThreadCount) {
+  // The transpose splits the rows into one part per thread: parts of uneven sizes, some empty.
+  const PointSet points = random_cloud(3000, 3, 11);
+  std::mt19937_64 rng(2);
+  std::uniform_real_distribution<double> radius(0.5, 2.0);  // radius classes 1 and 2
+  std::vector<double> radii(points.size());
+  for (double& r : radii) r = radius(rng);
+  for (const RadiusRule rule : {RadiusRule::scatter, RadiusRule::max, RadiusRule::min})
+    for (const bool half : {false, true}) {
+      if (half && rule == RadiusRule::scatter) continue;
+      SearchOptions options;
+      options.backend = Backend::openmp;
+      options.half = half;
+      options.threads = 1;
+      const NeighborList expected = brute_force_with_radii(points.view(), radii, rule, options);
+      for (const int threads : {1, 3, 7, 16}) {
+        options.threads = threads;
+        EXPECT_EQ(search_with_radii(points.view(), radii, rule, options), expected)
+            << radius_rule_name(rule) << (half ? " half, " : " full, ") << threads << " threads";
+      }
+    }
+}
+
 TEST(RadiiErrors, NameThePointOrTheRule) {
   const PointSet points = lattice(4);
   SearchOptions options;

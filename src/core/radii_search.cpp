@@ -9,6 +9,7 @@
 
 #include "../backends/backends.hpp"
 #include "family_search.hpp"
+#include "parallel_scan.hpp"
 #include "horizon/cell_index.hpp"
 #include "horizon/error.hpp"
 #include "horizon/grid.hpp"
@@ -233,41 +234,110 @@ Rows gather(PointView row_points, std::span<const double> radii, PointView id_po
   return out;
 }
 
-/// Row j of the transpose holds every i whose row holds j, ascending.
-Rows transpose(const Rows& rows) {
-  const std::size_t n = rows.offsets.size() - 1;
+/// Row j of the transpose holds every i whose row holds j, ascending. The rows are split into
+/// parts, one per thread (at most 8: a counter per part and point); each part's entries per
+/// column are counted, so every part writes its i's of column j after those of the parts before.
+Rows transpose(const Rows& rows, int threads) {
+  const auto n = static_cast<std::int64_t>(rows.offsets.size()) - 1;
+  const int parts = static_cast<int>(std::clamp<std::int64_t>(std::min(threads, 8), 1, std::max<std::int64_t>(1, n)));
+  auto part_first = [&](int t) { return n * t / parts; };
+  // next[t * n + j]: the entries of column j in part t, then where part t writes the next one.
+  std::vector<std::int64_t> next(static_cast<std::size_t>(parts) * static_cast<std::size_t>(n), 0);
+  auto of_part = [&](int t) { return next.data() + static_cast<std::size_t>(t) * static_cast<std::size_t>(n); };
+#pragma omp parallel for schedule(static, 1) num_threads(parts) if (parts > 1)
+  for (int t = 0; t < parts; ++t) {
+    std::int64_t* count = of_part(t);
+    for (std::int64_t e = rows.offsets[static_cast<std::size_t>(part_first(t))];
+         e < rows.offsets[static_cast<std::size_t>(part_first(t + 1))]; ++e)
+      ++count[rows.ids[static_cast<std::size_t>(e)]];
+  }
   Rows out;
-  out.offsets.assign(n + 1, 0);
-  for (const point_id j : rows.ids) ++out.offsets[static_cast<std::size_t>(j) + 1];
-  for (std::size_t i = 0; i < n; ++i) out.offsets[i + 1] += out.offsets[i];
+  out.offsets.resize(static_cast<std::size_t>(n) + 1);
+  out.offsets[0] = 0;
+#pragma omp parallel for schedule(static) num_threads(parts) if (parts > 1)
+  for (std::int64_t j = 0; j < n; ++j) {
+    std::int64_t total = 0;
+    for (int t = 0; t < parts; ++t) {  // part t's first place within row j
+      const std::int64_t here = of_part(t)[j];
+      of_part(t)[j] = total;
+      total += here;
+    }
+    out.offsets[static_cast<std::size_t>(j) + 1] = total;
+  }
+  detail::inclusive_scan(out.offsets.data(), out.offsets.size(), parts);
   out.ids.resize(rows.ids.size());
-  Buffer<std::int64_t> next(out.offsets.begin(), out.offsets.end() - 1);
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::int64_t e = rows.offsets[i]; e < rows.offsets[i + 1]; ++e)
-      out.ids[static_cast<std::size_t>(next[static_cast<std::size_t>(rows.ids[static_cast<std::size_t>(e)])]++)] =
-          static_cast<point_id>(i);
+#pragma omp parallel for schedule(static, 1) num_threads(parts) if (parts > 1)
+  for (int t = 0; t < parts; ++t) {
+    std::int64_t* place = of_part(t);
+    for (std::int64_t j = 0; j < n; ++j) place[j] += out.offsets[static_cast<std::size_t>(j)];
+    for (std::int64_t i = part_first(t); i < part_first(t + 1); ++i)
+      for (std::int64_t e = rows.offsets[static_cast<std::size_t>(i)]; e < rows.offsets[static_cast<std::size_t>(i) + 1]; ++e)
+        out.ids[static_cast<std::size_t>(place[rows.ids[static_cast<std::size_t>(e)]]++)] = static_cast<point_id>(i);
+  }
   return out;
 }
 
 /// Row i: the union (max) or intersection (min) of the sorted rows i of a and b; with `half`,
-/// only ids above i.
-Rows combine(const Rows& a, const Rows& b, bool unite, bool half) {
-  const std::size_t n = a.offsets.size() - 1;
+/// only ids above i. On several threads sized by a counting pass, then written in place, rows
+/// in parallel; on one, appended in one pass (the counting pass would double its time).
+Rows combine(const Rows& a, const Rows& b, bool unite, bool half, int threads) {
+  const auto n = static_cast<std::int64_t>(a.offsets.size()) - 1;
+  auto row_of = [](const Rows& r, std::int64_t i, bool above_only) {
+    const point_id* first = r.ids.data() + r.offsets[static_cast<std::size_t>(i)];
+    const point_id* last = r.ids.data() + r.offsets[static_cast<std::size_t>(i) + 1];
+    return std::pair{above_only ? std::upper_bound(first, last, static_cast<point_id>(i)) : first, last};
+  };
+  if (threads <= 1) {
+    Rows out;
+    out.offsets.assign(static_cast<std::size_t>(n) + 1, 0);
+    out.ids.reserve(unite ? a.ids.size() + b.ids.size() : std::min(a.ids.size(), b.ids.size()));
+    for (std::int64_t i = 0; i < n; ++i) {
+      const auto [fa, la] = row_of(a, i, half);
+      const auto [fb, lb] = row_of(b, i, half);
+      if (unite)
+        std::set_union(fa, la, fb, lb, std::back_inserter(out.ids));
+      else
+        std::set_intersection(fa, la, fb, lb, std::back_inserter(out.ids));
+      out.offsets[static_cast<std::size_t>(i) + 1] = static_cast<std::int64_t>(out.ids.size());
+    }
+    return out;
+  }
+  // Counts by the same merge, writing nowhere (copies share the count).
+  struct Counter {
+    std::int64_t* n;
+    Counter& operator*() { return *this; }
+    Counter& operator++() { return *this; }
+    Counter operator++(int) { return *this; }
+    Counter& operator=(point_id) {
+      ++*n;
+      return *this;
+    }
+  };
   Rows out;
-  out.offsets.assign(n + 1, 0);
-  out.ids.reserve(unite ? a.ids.size() + b.ids.size() : std::min(a.ids.size(), b.ids.size()));
-  std::vector<point_id> row;
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto first_a = a.ids.begin() + a.offsets[i], last_a = a.ids.begin() + a.offsets[i + 1];
-    const auto first_b = b.ids.begin() + b.offsets[i], last_b = b.ids.begin() + b.offsets[i + 1];
-    row.clear();
+  out.offsets.resize(static_cast<std::size_t>(n) + 1);
+  out.offsets[0] = 0;
+#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads) if (threads > 1)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto [fa, la] = row_of(a, i, half);
+    const auto [fb, lb] = row_of(b, i, half);
+    std::int64_t count = 0;
     if (unite)
-      std::set_union(first_a, last_a, first_b, last_b, std::back_inserter(row));
+      std::set_union(fa, la, fb, lb, Counter{&count});
     else
-      std::set_intersection(first_a, last_a, first_b, last_b, std::back_inserter(row));
-    const auto from = half ? std::upper_bound(row.begin(), row.end(), static_cast<point_id>(i)) : row.begin();
-    out.ids.insert(out.ids.end(), from, row.end());
-    out.offsets[i + 1] = static_cast<std::int64_t>(out.ids.size());
+      std::set_intersection(fa, la, fb, lb, Counter{&count});
+    out.offsets[static_cast<std::size_t>(i) + 1] = count;
+  }
+  detail::inclusive_scan(out.offsets.data(), out.offsets.size(), threads);
+  out.ids.resize(static_cast<std::size_t>(out.offsets[static_cast<std::size_t>(n)]));
+#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads) if (threads > 1)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto [fa, la] = row_of(a, i, half);
+    const auto [fb, lb] = row_of(b, i, half);
+    point_id* place = out.ids.data() + out.offsets[static_cast<std::size_t>(i)];
+    if (unite)
+      std::set_union(fa, la, fb, lb, place);
+    else
+      std::set_intersection(fa, la, fb, lb, place);
   }
   return out;
 }
@@ -294,8 +364,8 @@ Rows search_rows(PointView points, std::span<const double> radii, RadiusRule rul
                       : gather<M>(points, radii, points, true, options, threads, stats);
   if (rule == RadiusRule::gather) return gathered;
   Stopwatch clock;
-  Rows scattered = transpose(gathered);
-  if (rule != RadiusRule::scatter) scattered = combine(gathered, scattered, rule == RadiusRule::max, options.half);
+  Rows scattered = transpose(gathered, threads);
+  if (rule != RadiusRule::scatter) scattered = combine(gathered, scattered, rule == RadiusRule::max, options.half, threads);
   stats.search_seconds += clock.lap();
   return scattered;
 }
