@@ -106,21 +106,22 @@ bool within_reach(const Shape& s, const Vec& x, double side, double reach) {
   return dot(d, d) < (s.radius + reach) * (s.radius + reach);
 }
 
-std::vector<Sides> sides_of(PointView points, const std::vector<Shape>& shapes, double reach, int threads) {
+ScratchBuffer<Sides> sides_of(PointView points, const std::vector<Shape>& shapes, double reach, int threads) {
   const auto n = static_cast<std::int64_t>(points.size());
-  std::vector<Sides> sides(points.size());
+  ScratchBuffer<Sides> sides(points.size());  // not zeroed: each is written once below
   // A margin for the rounding of the dot products (bond lengths and offsets are O(reach) here).
   const double padded = reach > 0 ? reach * (1 + 1e-6) : std::numeric_limits<double>::infinity();
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
   for (std::int64_t i = 0; i < n; ++i) {
     const Vec x = point(points, static_cast<std::size_t>(i));
-    Sides& s = sides[static_cast<std::size_t>(i)];
+    Sides s;
     for (std::size_t f = 0; f < shapes.size(); ++f) {
       const double side = side_of(shapes[f], x);
       s.above |= std::uint64_t{side > 0} << f;
       s.below |= std::uint64_t{side < 0} << f;
       s.near |= std::uint64_t{within_reach(shapes[f], x, side, padded)} << f;
     }
+    sides[static_cast<std::size_t>(i)] = s;
   }
   return sides;
 }
@@ -146,8 +147,8 @@ NeighborList filter(NeighborList list, PointView rows, PointView columns, bool o
   if (!(reach >= 0)) throw Error("bond filters: the reach must be >= 0 (0: unknown)");
   std::vector<Shape> shapes(filters.size());
   std::transform(filters.begin(), filters.end(), shapes.begin(), shape_of);
-  const std::vector<Sides> row_sides = sides_of(rows, shapes, reach, threads);
-  const std::vector<Sides> column_sides = one_set ? std::vector<Sides>{} : sides_of(columns, shapes, reach, threads);
+  const ScratchBuffer<Sides> row_sides = sides_of(rows, shapes, reach, threads);
+  const ScratchBuffer<Sides> column_sides = one_set ? ScratchBuffer<Sides>{} : sides_of(columns, shapes, reach, threads);
   const Sides* col = one_set ? row_sides.data() : column_sides.data();
 
   const std::uint64_t all = filters.size() == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << filters.size()) - 1;
