@@ -239,7 +239,7 @@ Rows gather(PointView row_points, std::span<const double> radii, PointView id_po
 /// column are counted, so every part writes its i's of column j after those of the parts before.
 Rows transpose(const Rows& rows, int threads) {
   const auto n = static_cast<std::int64_t>(rows.offsets.size()) - 1;
-  const int parts = static_cast<int>(std::clamp<std::int64_t>(std::min(threads, 8), 1, std::max<std::int64_t>(1, n)));
+  const int parts = static_cast<int>(std::max<std::int64_t>(1, std::min<std::int64_t>({threads, 8, n})));
   auto part_first = [&](int t) { return n * t / parts; };
   // next[t * n + j]: the entries of column j in part t, then where part t writes the next one.
   std::vector<std::int64_t> next(static_cast<std::size_t>(parts) * static_cast<std::size_t>(n), 0);

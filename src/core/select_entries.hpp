@@ -1,6 +1,6 @@
 #pragma once
-// A sub-list: the entries of a list that pass a test, rows kept in order. Shared by the bond
-// filters and the Verlet list's refresh.
+// A sub-list: the entries of a list that pass a test, rows kept in order: a new list (the Verlet
+// list's refresh, which keeps its candidates) or in the list's own arrays (the filters).
 #include <algorithm>
 #include <bit>
 #include <cstring>
@@ -10,13 +10,12 @@
 
 namespace horizon::detail {
 
-/// The entries j of each row i with keep(i, j); `whole(i)` true keeps row i without tests.
-/// Each entry is tested once and its verdict kept as a bit, each row's bits from a word of its
+/// The entries j of each row i with keep(i, j). Each entry is tested once and its verdict kept as a bit, each row's bits from a word of its
 /// own (about 1/32 of the list), then the kept entries are written straight to their place: a
 /// temporary list moved afterwards cost more, and testing twice read each candidate's point
 /// twice (measured: Verlet refresh of lattice 100, m = 3.015).
-template <class Whole, class Keep>
-NeighborList select_entries(const NeighborList& list, Whole whole, Keep keep, int threads) {
+template <class Keep>
+NeighborList select_entries(const NeighborList& list, Keep keep, int threads) {
   const auto n = static_cast<std::int64_t>(list.size());
   const std::int64_t* from = list.offsets().data();
   // first_word[i]: where row i's bits start (a row of s entries takes ceil(s / 64) words).
@@ -32,17 +31,14 @@ NeighborList select_entries(const NeighborList& list, Whole whole, Keep keep, in
 #pragma omp parallel for schedule(dynamic, 1024) num_threads(threads) if (threads > 1)
   for (std::int64_t i = 0; i < n; ++i) {
     const auto row = list.row(static_cast<std::size_t>(i));
-    std::int64_t count = static_cast<std::int64_t>(row.size());
-    if (!whole(static_cast<std::size_t>(i))) {
-      count = 0;
-      std::uint64_t* bits = kept.data() + first_word[i];
-      for (std::size_t e = 0; e < row.size(); e += 64) {
-        const std::size_t end = std::min(row.size(), e + 64);
-        std::uint64_t word = 0;
-        for (std::size_t f = e; f < end; ++f) word |= std::uint64_t{keep(static_cast<std::size_t>(i), row[f])} << (f - e);
-        bits[e / 64] = word;
-        count += std::popcount(word);
-      }
+    std::int64_t count = 0;
+    std::uint64_t* bits = kept.data() + first_word[i];
+    for (std::size_t e = 0; e < row.size(); e += 64) {
+      const std::size_t end = std::min(row.size(), e + 64);
+      std::uint64_t word = 0;
+      for (std::size_t f = e; f < end; ++f) word |= std::uint64_t{keep(static_cast<std::size_t>(i), row[f])} << (f - e);
+      bits[e / 64] = word;
+      count += std::popcount(word);
     }
     offsets[i + 1] = count;
   }
@@ -53,7 +49,7 @@ NeighborList select_entries(const NeighborList& list, Whole whole, Keep keep, in
     const auto row = list.row(static_cast<std::size_t>(i));
     point_id* out = indices.data() + offsets[i];
     const std::int64_t size = offsets[i + 1] - offsets[i];
-    if (size == static_cast<std::int64_t>(row.size())) {  // all kept (or whole): no bits read
+    if (size == static_cast<std::int64_t>(row.size())) {  // all kept: no bits read
       if (!row.empty()) std::memcpy(out, row.data(), row.size() * sizeof(point_id));
       continue;
     }
@@ -90,9 +86,10 @@ inline void move_down(point_id* data, std::int64_t to, std::int64_t from, std::i
   }
 }
 
-/// The same in the list's own arrays: no second list, whose fresh pages cost more than the tests
-/// (measured: ten cracks over lattice 100, m = 3.015, 2-core VM). Each entry is tested once:
-/// rows are first compacted where they lie, then moved down to their new offsets.
+/// The same in the list's own arrays, rows with `whole(i)` kept without tests: no second list,
+/// whose fresh pages cost more than the tests (measured: ten cracks over lattice 100, m = 3.015,
+/// 2-core VM). Each entry is tested once: rows are first compacted where they lie, then moved
+/// down to their new offsets.
 template <class Whole, class Keep>
 NeighborList select_entries(NeighborList&& list, Whole whole, Keep keep, int threads) {
   const bool half = list.is_half();

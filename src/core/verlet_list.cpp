@@ -21,7 +21,7 @@ template <Metric M, int D>
 NeighborList refresh_with(const NeighborList& candidates, const double* xyz, double horizon, int threads) {
   const double limit = metric_threshold(M, horizon);
   return detail::select_entries(
-      candidates, [](std::size_t) { return false; },
+      candidates,
       [&](std::size_t i, point_id j) {
         const double* a = xyz + D * i;
         const double* b = xyz + D * static_cast<std::size_t>(j);
