@@ -1,22 +1,24 @@
 #pragma once
 // Included by search.cu only (one translation unit): definitions in an anonymous namespace.
-// The per-cell build kernel. A block takes an occupied cell, stages the cell's stencil in
-// shared memory once (read coalesced: (2k+1)^2 runs of 2k+1 adjacent cells in 3-D), sorted by
-// id when rows are to be sorted; then a warp per point of the cell sweeps the staged
-// candidates 32 at a time and stores each sweep's hits as one coalesced piece of the row.
-// Every point of the cell tests the candidates in id order, so rows come out sorted without
-// a sort per row, and the cell's points share one staging and one sort. Stages hold 256,
-// 1024 or 4096 candidates; the dense cells of a clustered cloud, past 1024, take a second
-// launch with the 113 KB stage, so the other cells keep their blocks per SM. A stencil larger
-// than every stage is swept from global memory instead, leaving its rows unsorted: their ids
-// go to a.spilled, to be sorted after the fill.
+// The per-cell fill, from the count pass's hit bits (hit_bits.cuh). A block takes an occupied
+// cell and stages the ids of its stencil in shared memory once (read coalesced: (2k+1)^2 runs
+// of 2k+1 adjacent cells in 3-D), sorted by id with their walk-order index when rows are to be
+// sorted; then a warp per point of the cell sweeps the staged candidates 32 at a time, looks up
+// each one's bit, and stores each sweep's hits as one coalesced piece of the row. Every point
+// of the cell reads the candidates in id order, so rows come out sorted without a sort per row,
+// and the cell's points share one staging and one sort. Stages hold 256, 1024 or 4096
+// candidates; the dense cells of a clustered cloud, past 1024, take a second launch with the
+// widest stage, so the other cells keep their blocks per SM. A stencil larger than every stage
+// is swept from global memory instead, leaving its rows unsorted: their ids go to a.spilled,
+// to be sorted after the fill.
 // Measured against the per-point fill + row sort (Nsight Compute, H100, lattice n = 200,
-// m = 3.015): 14.6 ms against 25.9 ms (warp per point, fused warp sort). For rows of up to
-// 64, or cells of fewer than 8 points, the per-point kernels win (point_kernel.cuh).
+// m = 3.015), when this kernel still tested the staged coordinates itself: 14.6 ms against
+// 25.9 ms. For rows of up to 64, or cells of fewer than 8 points, the per-point kernels win
+// (point_kernel.cuh).
 #include <cub/block/block_radix_sort.cuh>
 
 #include "device_index.cuh"
-#include "horizon/metric.hpp"
+#include "hit_bits.cuh"
 
 namespace horizon::detail {
 namespace {
@@ -24,17 +26,15 @@ namespace {
 constexpr int cell_block = 128, cell_warps = cell_block / 32;
 constexpr int most_runs = 49;  // (2k+1)^2 runs of a 3-D stencil, up to k = 3
 constexpr int wide_stage = 8;     // items per thread of the stage: 1024 candidates
-constexpr int widest_stage = 32;  // 4096 candidates (113 KB of shared memory), for dense cells
+constexpr int widest_stage = 32;  // 4096 candidates, for dense cells
 
 template <int Items>
 struct Stage {
   static constexpr int capacity = cell_block * Items;
   using Sort = cub::BlockRadixSort<point_id, cell_block, Items, point_id>;
   union {
-    typename Sort::TempStorage sort;  // used before the coordinates are written
-    struct {
-      double x[capacity], y[capacity], z[capacity];
-    } at;
+    typename Sort::TempStorage sort;  // used before the indices are written
+    point_id index[capacity];         // walk-order index of the i-th staged candidate
   };
   point_id id[capacity];
   std::int64_t run_begin[most_runs];
@@ -50,22 +50,15 @@ __device__ std::int64_t position_of(const Stage<Items>& s, int i) {
   return s.run_begin[r] + (i - s.run_prefix[r]);
 }
 
-/// One warp sweeps `count` candidates for a point; `candidate(i, x, y, z, id)` reads the i-th.
-/// Hits are stored at row[found...] in candidate order; returns the new `found`.
-template <Metric M, int D, bool Half, typename Candidate>
-__device__ int sweep(double xi, double yi, double zi, point_id self, int count, double threshold,
-                     point_id* row, int found, Candidate candidate) {
+/// One warp sweeps `count` candidates for a point; `candidate(i, id)` names the i-th and says
+/// whether it is a hit. Hits are stored at row[found...] in candidate order; returns the new `found`.
+template <typename Candidate>
+__device__ int sweep(int count, point_id* row, int found, Candidate candidate) {
   const int lane = threadIdx.x % 32;
   for (int i0 = 0; i0 < count; i0 += 32) {
     const int i = i0 + lane;
-    bool hit = false;
     point_id other = 0;
-    if (i < count) {
-      double x, y, z;
-      candidate(i, x, y, z, other);
-      const double d = metric_accumulate<M>(xi - x, yi - y, D == 3 ? zi - z : 0.0);
-      hit = d < threshold && (Half ? other > self : other != self);
-    }
+    const bool hit = i < count && candidate(i, other);
     const unsigned ballot = __ballot_sync(0xffffffffu, hit);
     if (hit) row[found + __popc(ballot & ((1u << lane) - 1))] = other;
     found += __popc(ballot);
@@ -76,7 +69,7 @@ __device__ int sweep(double xi, double yi, double zi, point_id self, int count, 
 /// Fills the rows of the cells whose stencil holds more than `narrower` candidates (a launch
 /// with a smaller stage took the others); with `wider_follows`, those past this stage's
 /// capacity are left to a launch with a larger one, else swept from global memory.
-template <Metric M, int D, bool Half, bool Sorted, int Items>
+template <int D, bool Sorted, int Items>
 __global__ void __launch_bounds__(cell_block) cell_families(DeviceIndexView ix, PassArgs a, int narrower,
                                                             bool wider_follows) {
   extern __shared__ __align__(16) unsigned char stage_memory[];  // sized at launch: the widest exceeds 48 KB
@@ -113,64 +106,47 @@ __global__ void __launch_bounds__(cell_block) cell_families(DeviceIndexView ix, 
     }
     if (staged) {
       if constexpr (Sorted) {
-        point_id keys[Items], where[Items];
+        point_id keys[Items], index[Items];
         for (int j = 0; j < Items; ++j) {
           const int i = j * cell_block + static_cast<int>(threadIdx.x);
-          if (i < stencil) {
-            where[j] = static_cast<point_id>(position_of(s, i));
-            keys[j] = ix.id[where[j]];
-          } else {
-            keys[j] = static_cast<point_id>((1u << a.sort_bits) - 1);  // sorts after every id
-            where[j] = 0;
-          }
+          index[j] = i;
+          keys[j] = i < stencil ? ix.id[position_of(s, i)]
+                                : static_cast<point_id>((1u << a.sort_bits) - 1);  // sorts after every id
         }
-        typename Stage<Items>::Sort(s.sort).SortBlockedToStriped(keys, where, 0, a.sort_bits);
-        __syncthreads();  // the sort's storage becomes the coordinates
+        typename Stage<Items>::Sort(s.sort).SortBlockedToStriped(keys, index, 0, a.sort_bits);
+        __syncthreads();  // the sort's storage becomes the indices
         for (int j = 0; j < Items; ++j) {
           const int i = j * cell_block + static_cast<int>(threadIdx.x);
           if (i < stencil) {
-            s.at.x[i] = ix.x[where[j]];
-            s.at.y[i] = ix.y[where[j]];
-            if (D == 3) s.at.z[i] = ix.z[where[j]];
+            s.index[i] = index[j];
             s.id[i] = keys[j];
           }
         }
       } else {
-        for (int i = threadIdx.x; i < stencil; i += cell_block) {
-          const std::int64_t q = position_of(s, i);
-          s.at.x[i] = ix.x[q];
-          s.at.y[i] = ix.y[q];
-          if (D == 3) s.at.z[i] = ix.z[q];
-          s.id[i] = ix.id[q];
-        }
+        for (int i = threadIdx.x; i < stencil; i += cell_block) s.id[i] = ix.id[position_of(s, i)];
       }
       __syncthreads();
     }
     for (std::int64_t p = b + warp; p < e; p += cell_warps) {
       const point_id self = ix.order[p];
       if (self >= ix.queries || self < a.first || self >= a.last) continue;
-      const double xi = ix.x[p], yi = ix.y[p], zi = D == 3 ? ix.z[p] : 0.0;
+      const unsigned* words = a.bits + a.bit_offsets[p];
       point_id* row = a.out + (a.offsets[self] - a.base);
       if (staged) {
-        sweep<M, D, Half>(xi, yi, zi, self, stencil, a.threshold, row, 0,
-                                        [&](int i, double& x, double& y, double& z, point_id& id) {
-                                          x = s.at.x[i];
-                                          y = s.at.y[i];
-                                          z = D == 3 ? s.at.z[i] : 0.0;
-                                          id = s.id[i];
-                                        });
+        sweep(stencil, row, 0, [&](int i, point_id& id) {
+          id = s.id[i];
+          return is_hit(words, Sorted ? s.index[i] : i);
+        });
       } else {
         if (Sorted && threadIdx.x % 32 == 0) a.spilled[atomicAdd(a.spill_count, 1u)] = self;
         int found = 0;
         for (int r = 0; r < s.runs; ++r) {
           const std::int64_t begin = s.run_begin[r];
-          found = sweep<M, D, Half>(xi, yi, zi, self, s.run_prefix[r + 1] - s.run_prefix[r], a.threshold,
-                                          row, found, [&](int i, double& x, double& y, double& z, point_id& id) {
-                                            x = ix.x[begin + i];
-                                            y = ix.y[begin + i];
-                                            z = D == 3 ? ix.z[begin + i] : 0.0;
-                                            id = ix.id[begin + i];
-                                          });
+          const int first = s.run_prefix[r];
+          found = sweep(s.run_prefix[r + 1] - first, row, found, [&](int i, point_id& id) {
+            id = ix.id[begin + i];
+            return is_hit(words, first + i);
+          });
         }
       }
     }
@@ -190,10 +166,10 @@ bool widest_stage_fits() {
 /// Launches the per-cell fill over the occupied cells whose stencil holds more than
 /// `narrower` candidates (see cell_families), with as many blocks as the GPU holds at once
 /// (each takes cells in turn).
-template <bool Sorted, int Items, Metric M, int D, bool Half>
+template <bool Sorted, int Items, int D>
 void launch_cell_fill(const DeviceIndexView& ix, const PassArgs& args, cudaStream_t stream, int narrower = 0,
                       bool wider_follows = false) {
-  const auto kernel = cell_families<M, D, Half, Sorted, Items>;
+  const auto kernel = cell_families<D, Sorted, Items>;
   constexpr int bytes = sizeof(Stage<Items>);
   int device = 0, processors = 0, per_processor = 0;
   HORIZON_CUDA_CHECK(cudaGetDevice(&device));

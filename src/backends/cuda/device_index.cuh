@@ -191,6 +191,8 @@ struct PassArgs {
   point_id* out;
   point_id first, last;
   std::int64_t base;
+  unsigned* bits;                     // hit bits (hit_bits.cuh): written by the count pass...
+  const std::int64_t* bit_offsets;    // ...at bits + bit_offsets[p], p the sorted position
 };
 
 class DeviceIndex {

@@ -2,14 +2,17 @@
 // Included by search.cu only (one translation unit): definitions in an anonymous namespace.
 // The per-point build kernels: a thread per point in sorted order (so a warp's points share
 // most of their candidates, read through L1), walking the stencil's (2k+1)^2 runs of 2k+1
-// cells. The count pass also reports the widest stencil, which decides the fill kernel.
-// Rows of up to 64 are filled here: each thread stages its row in shared memory, sorts it
-// there, and the warp stores its 32 rows one after another as coalesced pieces. Measured
-// (Nsight Compute, H100, lattice n = 200, m = 1.5): the fill storing straight to the list
-// took 2.4 ms and a thread-per-row sort after it 3.1 ms.
+// cells. The count pass also reports the widest stencil, which decides the fill kernel, and
+// keeps its verdicts as hit bits (hit_bits.cuh). Rows of up to 64 are filled from those bits:
+// each thread stages its row in shared memory, sorts it there, and the warp stores its 32 rows
+// one after another as coalesced pieces. Measured (Nsight Compute, H100, lattice n = 200,
+// m = 1.5), before the bits: the fill storing straight to the list took 2.4 ms and a
+// thread-per-row sort after it 3.1 ms. Without bits (they did not fit) fill_families tests
+// the candidates again and the rows are sorted after it.
 #include <climits>
 
 #include "device_index.cuh"
+#include "hit_bits.cuh"
 #include "horizon/metric.hpp"
 #include "launch.cuh"
 
@@ -22,32 +25,43 @@ constexpr int staged_row = 64;  // longest row the short-row fill takes
 /// rows of up to 32, measured 10-20 % faster there than 128 for rows of up to 64).
 constexpr int staged_block(int rows) { return rows <= 32 ? 256 : 128; }
 
-/// Calls emit(other) for each neighbour of the point at sorted position p, in stencil order;
-/// returns the stencil's size.
+/// Calls emit(other) for each neighbour of the point at sorted position p, in stencil order,
+/// and records every verdict in `words` when given (hit_bits.cuh); returns the stencil's size.
+/// (Tried: 32-bit indices from each run's base pointers and a moving mask for the verdicts:
+/// 25 % more instructions, 8.1 ms against 7.0 for the count of lattice n = 200, m = 3.015, H200.)
 template <Metric M, int D, bool Half, typename Emit>
-__device__ std::int64_t walk_stencil(const DeviceIndexView& ix, std::int64_t p, point_id self, double threshold,
-                                     Emit emit) {
+__device__ int walk_stencil(const DeviceIndexView& ix, std::int64_t p, point_id self, double threshold, Emit emit,
+                            unsigned* words = nullptr) {
   const double xi = ix.x[p], yi = ix.y[p], zi = ix.z[p];
   const std::int64_t cx = ix.grid.cell_of(xi, 0), cy = ix.grid.cell_of(yi, 1);
   const std::int64_t cz = D == 3 ? ix.grid.cell_of(zi, 2) : 0;
   const int k = ix.grid.k, reach_z = D == 3 ? k : 0;
-  std::int64_t stencil = 0;
+  int stencil = 0;
+  unsigned word = 0;  // the verdicts of the word being filled
   for (int dz = -reach_z; dz <= reach_z; ++dz)
     for (int dy = -k; dy <= k; ++dy) {
       std::int64_t begin, end;
       ix.row(cx, cy + dy, cz + dz, begin, end);
-      stencil += end - begin;
-      for (std::int64_t q = begin; q < end; ++q) {
+      for (std::int64_t q = begin; q < end; ++q, ++stencil) {
         const double d = metric_accumulate<M>(xi - ix.x[q], yi - ix.y[q], D == 3 ? zi - ix.z[q] : 0.0);
         const point_id other = ix.id[q];
-        if (d < threshold && (Half ? other > self : q != p)) emit(other);
+        const bool hit = d < threshold && (Half ? other > self : q != p);
+        if (hit) emit(other);
+        if (words) {
+          word |= static_cast<unsigned>(hit) << (stencil & 31);
+          if ((stencil & 31) == 31) {
+            words[stencil >> 5] = word;
+            word = 0;
+          }
+        }
       }
     }
+  if (words && (stencil & 31)) words[stencil >> 5] = word;
   return stencil;
 }
 
-/// Count pass: counts[id] = |family| of every point, the widest stencil of the queries and the
-/// number of rows longer than staged_row.
+/// Count pass: counts[id] = |family| of every point, the widest stencil of the queries, the
+/// number of rows longer than staged_row and, when a.bits is set, every point's hit bits.
 template <Metric M, int D, bool Half>
 __global__ void __launch_bounds__(block_size) count_families(DeviceIndexView ix, PassArgs a) {
   __shared__ unsigned long long widest, long_rows;
@@ -56,9 +70,11 @@ __global__ void __launch_bounds__(block_size) count_families(DeviceIndexView ix,
   const std::int64_t p = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
   if (p < ix.n) {
     const point_id self = ix.order[p];
-    std::int64_t found = 0;
+    int found = 0;
     if (self < ix.queries) {
-      const std::int64_t stencil = walk_stencil<M, D, Half>(ix, p, self, a.threshold, [&](point_id) { ++found; });
+      unsigned* words = a.bits ? a.bits + a.bit_offsets[p] : nullptr;
+      const int stencil =
+          walk_stencil<M, D, Half>(ix, p, self, a.threshold, [&](point_id) { ++found; }, words);
       atomicMax(&widest, static_cast<unsigned long long>(stencil));
       if (found > staged_row) atomicAdd(&long_rows, 1ull);
     }
@@ -71,7 +87,8 @@ __global__ void __launch_bounds__(block_size) count_families(DeviceIndexView ix,
   }
 }
 
-/// Fill pass for any row length: each thread stores its row straight into the list.
+/// Fill pass for any row length: each thread stores its row straight into the list, from its
+/// hit bits, or without them testing its candidates again.
 template <Metric M, int D, bool Half>
 __global__ void fill_families(DeviceIndexView ix, PassArgs a) {
   const std::int64_t p = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
@@ -79,16 +96,18 @@ __global__ void fill_families(DeviceIndexView ix, PassArgs a) {
   const point_id self = ix.order[p];
   if (self >= ix.queries || self < a.first || self >= a.last) return;
   point_id* row = a.out + (a.offsets[self] - a.base);
-  std::int64_t found = 0;
-  walk_stencil<M, D, Half>(ix, p, self, a.threshold, [&](point_id other) { row[found++] = other; });
+  int found = 0;
+  const auto store = [&](point_id other) { row[found++] = other; };
+  if (a.bits) walk_hits<D>(ix, p, a.bits + a.bit_offsets[p], store);
+  else walk_stencil<M, D, Half>(ix, p, self, a.threshold, store);
 }
 
-/// Fill pass for rows of up to Rows: rows staged in shared memory (column `lane` of the warp's
-/// tile, padded so that both the per-thread and the per-row accesses avoid bank conflicts),
-/// sorted there by insertion when Sorted, stored by the warp row after row. A longer row (a
-/// dense spot of a clustered cloud) is stored straight into the list and its id appended to
-/// a.spilled, to be sorted afterwards (sort_rows_on_chip over those rows).
-template <Metric M, int D, bool Half, bool Sorted, int Rows>
+/// Fill pass for rows of up to Rows, from the hit bits: rows staged in shared memory (column
+/// `lane` of the warp's tile, padded so that both the per-thread and the per-row accesses avoid
+/// bank conflicts), sorted there by insertion when Sorted, stored by the warp row after row. A
+/// longer row (a dense spot of a clustered cloud) is stored straight into the list and its id
+/// appended to a.spilled, to be sorted afterwards (sort_rows_on_chip over those rows).
+template <int D, bool Sorted, int Rows>
 __global__ void __launch_bounds__(staged_block(Rows)) fill_short_rows(DeviceIndexView ix, PassArgs a) {
   constexpr int pitch = 33;  // rows[j * pitch + lane]: 32 lanes, +1 against bank conflicts
   __shared__ point_id tile[staged_block(Rows) / 32][Rows * pitch];
@@ -100,8 +119,9 @@ __global__ void __launch_bounds__(staged_block(Rows)) fill_short_rows(DeviceInde
   if (p < ix.n) {
     self = ix.order[p];
     if (self < ix.queries && self >= a.first && self < a.last) {
+      const unsigned* words = a.bits + a.bit_offsets[p];
       if (a.offsets[self + 1] - a.offsets[self] <= Rows) {
-        walk_stencil<M, D, Half>(ix, p, self, a.threshold, [&](point_id other) { rows[found++ * pitch + lane] = other; });
+        walk_hits<D>(ix, p, words, [&](point_id other) { rows[found++ * pitch + lane] = other; });
         if (Sorted)
           for (int i = 1; i < found; ++i) {
             const point_id value = rows[i * pitch + lane];
@@ -112,7 +132,7 @@ __global__ void __launch_bounds__(staged_block(Rows)) fill_short_rows(DeviceInde
       } else {
         point_id* row = a.out + (a.offsets[self] - a.base);
         std::int64_t stored = 0;
-        walk_stencil<M, D, Half>(ix, p, self, a.threshold, [&](point_id other) { row[stored++] = other; });
+        walk_hits<D>(ix, p, words, [&](point_id other) { row[stored++] = other; });
         if (Sorted) a.spilled[atomicAdd(a.spill_count, 1u)] = self;
       }
     }
@@ -126,12 +146,12 @@ __global__ void __launch_bounds__(staged_block(Rows)) fill_short_rows(DeviceInde
   }
 }
 
-template <Metric M, int D, bool Half, int Rows>
+template <int D, int Rows>
 void launch_short_rows(const DeviceIndexView& ix, const PassArgs& args, bool sorted, cudaStream_t stream) {
   constexpr int threads = staged_block(Rows);
   const auto blocks = static_cast<unsigned>((ix.n + threads - 1) / threads);
-  if (sorted) fill_short_rows<M, D, Half, true, Rows><<<blocks, threads, 0, stream>>>(ix, args);
-  else fill_short_rows<M, D, Half, false, Rows><<<blocks, threads, 0, stream>>>(ix, args);
+  if (sorted) fill_short_rows<D, true, Rows><<<blocks, threads, 0, stream>>>(ix, args);
+  else fill_short_rows<D, false, Rows><<<blocks, threads, 0, stream>>>(ix, args);
   check_launch("fill_short_rows");
 }
 

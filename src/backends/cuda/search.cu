@@ -1,10 +1,11 @@
 // The CUDA backend (thesis ch. 5, done the modern way): a binning step that sorts points by
 // cell with CUB radix sort and builds a cell start table (device_index.cuh), then the build
 // step in two passes, count -> scan -> fill, so no row has a fixed maximum and offsets are
-// 64-bit. The fill kernel follows what the count found: short rows staged and sorted per
-// thread (point_kernel.cuh), longer ones per cell with the stencil sorted once so rows come
-// out sorted (cell_kernel.cuh), and, for stencils too wide to stage, straight stores and a
-// sort after (row_sort.cuh). The pair test is metric_accumulate(), compiled with
+// 64-bit. The count pass keeps its verdicts as hit bits (hit_bits.cuh), so the fill tests
+// nothing again. The fill kernel follows what the count found: short rows staged and sorted
+// per thread (point_kernel.cuh), longer ones per cell with the stencil's ids sorted once so
+// rows come out sorted (cell_kernel.cuh), and, for stencils too wide to stage or when the bits
+// did not fit in GPU memory, straight stores and a sort after (row_sort.cuh). The pair test is metric_accumulate(), compiled with
 // -fmad=false, so every decision matches the CPU backends bit for bit. Memory comes from a
 // pool kept between calls (device_memory.hpp); host copies go through pinned staging
 // (host_copy.cuh).
@@ -73,18 +74,55 @@ PassArgs pass_args(const SearchOptions& o, std::int64_t n) {
   return a;
 }
 
-/// The count pass's results: row offsets by id, and what the fill needs to choose its kernel.
+/// The count pass's hit bits (hit_bits.cuh): point p's words from bits + offsets[p], p its sorted position.
+struct HitBits {
+  DeviceArray<std::int64_t> offsets;
+  DeviceArray<unsigned> bits;
+};
+
+/// Space for every point's hit bits when they take at most a quarter of the GPU memory still
+/// free, which leaves the list (or its batches) the rest; else none, and the fill tests again.
+HitBits hit_bits_for(const DeviceIndexView& ix, cudaStream_t stream, MemoryMeter& meter) {
+  const auto n = static_cast<std::size_t>(ix.n);
+  HitBits hits{DeviceArray<std::int64_t>(n + 1, meter), DeviceArray<unsigned>(0, meter)};
+  {
+    DeviceArray<std::int64_t> words(n, meter);
+    if (ix.grid.dims == 3) stencil_words<3><<<blocks_for(n), block_size, 0, stream>>>(ix, words.get());
+    else stencil_words<2><<<blocks_for(n), block_size, 0, stream>>>(ix, words.get());
+    check_launch("stencil_words");
+    HORIZON_CUDA_CHECK(cudaMemsetAsync(hits.offsets.get(), 0, sizeof(std::int64_t), stream));
+    std::size_t temp_bytes = 0;
+    HORIZON_CUDA_CHECK(cub::DeviceScan::InclusiveSum(nullptr, temp_bytes, words.get(), hits.offsets.get() + 1, ix.n, stream));
+    DeviceArray<char> temp(temp_bytes, meter);
+    HORIZON_CUDA_CHECK(cub::DeviceScan::InclusiveSum(temp.get(), temp_bytes, words.get(), hits.offsets.get() + 1, ix.n, stream));
+  }
+  std::int64_t total = 0;
+  HORIZON_CUDA_CHECK(cudaMemcpyAsync(&total, hits.offsets.get() + n, sizeof(total), cudaMemcpyDeviceToHost, stream));
+  HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
+  const auto bytes = static_cast<std::size_t>(total) * sizeof(unsigned);
+  std::size_t free = 0, device_total = 0;
+  HORIZON_CUDA_CHECK(cudaMemGetInfo(&free, &device_total));
+  if (bytes > (free + pool_spare_bytes(meter.pool)) / 4) return {DeviceArray<std::int64_t>(0, meter), DeviceArray<unsigned>(0, meter)};
+  hits.bits = DeviceArray<unsigned>(static_cast<std::size_t>(total), meter);
+  return hits;
+}
+
+/// The count pass's results: row offsets by id, its hit bits, and what the fill needs to
+/// choose its kernel.
 struct Counts {
   DeviceArray<std::int64_t> offsets;
   std::int64_t total = 0, longest = 0, widest = 0;  // entries, longest row, largest stencil
   std::int64_t cells = 0;                            // occupied cells
   std::int64_t long_rows = 0;                        // rows longer than staged_row
+  HitBits hits;
 };
 
 /// Counts each family, then an inclusive scan into offsets[1..count] (the rows: the points
 /// without the images); one synchronisation, to read the totals the allocation of the list needs.
 Counts count_offsets(const DeviceIndex& index, const SearchOptions& options, std::size_t count,
                      cudaStream_t stream, MemoryMeter& meter) {
+  const DeviceIndexView ix = index.view(options.queries);
+  HitBits hits = hit_bits_for(ix, stream, meter);
   DeviceArray<std::int64_t> counts(static_cast<std::size_t>(index.size()), meter), offsets(count + 1, meter),
       summary(5, meter);
   HORIZON_CUDA_CHECK(cudaMemsetAsync(summary.get(), 0, summary.bytes(), stream));
@@ -92,7 +130,8 @@ Counts count_offsets(const DeviceIndex& index, const SearchOptions& options, std
   args.counts = counts.get();
   args.widest = reinterpret_cast<unsigned long long*>(summary.get() + 2);
   args.long_rows = reinterpret_cast<unsigned long long*>(summary.get() + 4);
-  const DeviceIndexView ix = index.view(options.queries);
+  args.bits = hits.bits.get();
+  args.bit_offsets = hits.offsets.get();
   with_shape(options.metric, ix.grid.dims, options.half, [&](auto m, auto d, auto h) {
     const unsigned blocks = blocks_for(static_cast<std::size_t>(ix.n));  // images too: their counts are 0
     count_families<HORIZON_SHAPE(m, d, h)><<<blocks, block_size, 0, stream>>>(ix, args);
@@ -116,7 +155,7 @@ Counts count_offsets(const DeviceIndex& index, const SearchOptions& options, std
   std::int64_t host[5];
   HORIZON_CUDA_CHECK(cudaMemcpyAsync(host, summary.get(), sizeof(host), cudaMemcpyDeviceToHost, stream));
   HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
-  return Counts{std::move(offsets), host[0], host[1], host[2], host[3], host[4]};
+  return Counts{std::move(offsets), host[0], host[1], host[2], host[3], host[4], std::move(hits)};
 }
 
 struct MinusBase {
@@ -140,7 +179,8 @@ enum class Fill {
                // stored straight and sorted afterwards (point_kernel.cuh)
   per_cell,    // stencils of up to the stage's capacity sorted once per cell, rows of wider
                // ones stored straight and sorted afterwards (cell_kernel.cuh)
-  per_point    // anything else: straight stores, rows sorted afterwards (row_sort.cuh)
+  per_point    // anything else, and without hit bits: the candidates tested again, straight
+               // stores, rows sorted afterwards (row_sort.cuh)
 };
 
 // A cell's staging and sort pay off only when shared by enough points: with ~3 points per
@@ -152,6 +192,7 @@ constexpr std::int64_t cell_fill_min_points = 8;
 constexpr std::int64_t spill_max_fraction = 8;
 
 Fill fill_kind(const Counts& counts) {
+  if (!counts.hits.bits.get()) return Fill::per_point;
   if (counts.longest <= staged_row) return Fill::short_rows;
   const auto points = static_cast<std::int64_t>(counts.offsets.size()) - 1;
   if ((counts.widest <= Stage<wide_stage>::capacity || counts.longest <= block_row) &&
@@ -180,6 +221,8 @@ point_id* fill_rows(const DeviceIndex& index, const SearchOptions& options, cons
   args.first = first;
   args.last = last;
   args.base = base;
+  args.bits = counts.hits.bits.get();
+  args.bit_offsets = counts.hits.offsets.get();
   const bool sorted = options.sort_rows;
   const unsigned blocks = blocks_for(static_cast<std::size_t>(ix.n));
   const Fill kind = fill_kind(counts);
@@ -200,17 +243,17 @@ point_id* fill_rows(const DeviceIndex& index, const SearchOptions& options, cons
   with_shape(options.metric, ix.grid.dims, options.half, [&](auto m, auto d, auto h) {
     switch (kind) {
       case Fill::short_rows:
-        if (counts.longest <= 32) launch_short_rows<HORIZON_SHAPE(m, d, h), 32>(ix, args, sorted, stream);
-        else launch_short_rows<HORIZON_SHAPE(m, d, h), staged_row>(ix, args, sorted, stream);
+        if (counts.longest <= 32) launch_short_rows<decltype(d)::value, 32>(ix, args, sorted, stream);
+        else launch_short_rows<decltype(d)::value, staged_row>(ix, args, sorted, stream);
         return;
       case Fill::per_cell:
-        if (!sorted) return launch_cell_fill<false, wide_stage, HORIZON_SHAPE(m, d, h)>(ix, args, stream);
-        if (counts.widest <= Stage<2>::capacity) return launch_cell_fill<true, 2, HORIZON_SHAPE(m, d, h)>(ix, args, stream);
-        if (!use_widest_stage) return launch_cell_fill<true, wide_stage, HORIZON_SHAPE(m, d, h)>(ix, args, stream);
+        if (!sorted) return launch_cell_fill<false, wide_stage, decltype(d)::value>(ix, args, stream);
+        if (counts.widest <= Stage<2>::capacity) return launch_cell_fill<true, 2, decltype(d)::value>(ix, args, stream);
+        if (!use_widest_stage) return launch_cell_fill<true, wide_stage, decltype(d)::value>(ix, args, stream);
         // Dense cells (a clustered cloud's centres) staged too, in a second launch with a stage
-        // of 4096 whose 113 KB would leave the other cells a quarter of the blocks per SM.
-        launch_cell_fill<true, wide_stage, HORIZON_SHAPE(m, d, h)>(ix, args, stream, 0, true);
-        return launch_cell_fill<true, widest_stage, HORIZON_SHAPE(m, d, h)>(ix, args, stream, Stage<wide_stage>::capacity);
+        // of 4096 that would leave the other cells a quarter of the blocks per SM.
+        launch_cell_fill<true, wide_stage, decltype(d)::value>(ix, args, stream, 0, true);
+        return launch_cell_fill<true, widest_stage, decltype(d)::value>(ix, args, stream, Stage<wide_stage>::capacity);
       case Fill::per_point:
         fill_families<HORIZON_SHAPE(m, d, h)><<<blocks, block_size, 0, stream>>>(ix, args);
         return check_launch("fill_families");
@@ -419,11 +462,20 @@ DeviceNeighborList search_device(const double* xyz, std::size_t count, int dims,
   detail::Counts counts = detail::count_offsets(index, options, count, stream, meter);
   list.total_ = counts.total;
 
-  const bool spare_needed = detail::needs_spare(options, counts);
   const std::size_t list_bytes = static_cast<std::size_t>(list.total_) * sizeof(point_id);
-  const std::size_t needed = (spare_needed ? 2 : 1) * list_bytes +
-                             (spare_needed ? detail::sort_scratch_bytes(list.total_, static_cast<std::int64_t>(count), counts.offsets.get()) : 0);
-  const std::size_t available = detail::available_device_bytes(meter);
+  const auto needed_bytes = [&] {
+    const bool spare = detail::needs_spare(options, counts);
+    return (spare ? 2 : 1) * list_bytes +
+           (spare ? detail::sort_scratch_bytes(list.total_, static_cast<std::int64_t>(count), counts.offsets.get()) : 0);
+  };
+  std::size_t needed = needed_bytes(), available = detail::available_device_bytes(meter);
+  if (needed > available && counts.hits.bits.get()) {  // the fill can do without the hit bits
+    counts.hits.bits.reset();
+    counts.hits.offsets.reset();
+    needed = needed_bytes();
+    available = detail::available_device_bytes(meter);
+  }
+  const bool spare_needed = detail::needs_spare(options, counts);
   if (needed > available)
     throw DeviceOutOfMemory("the neighbour list needs " + std::to_string(needed) + " bytes of GPU memory, " +
                                 std::to_string(available) + " are free (the host API builds it in batches)",
