@@ -10,7 +10,7 @@ grep -E "tests passed|tests failed" "$OUT/gpu_tests.txt"
 cut -d, -f1-12 "$OUT/gpu_bench.csv"
 fills='Cuda.RowsOfEveryLengthAreSorted:Cuda.FewLongRowsAmongShortOnesAreSorted:Cuda.CellsWhoseStencilOutgrowsTheStageAreSorted:Cuda.UnsortedRowsHoldTheSameFamilies:Cuda.BatchedHostSearchEqualsSerial'
 for tool in memcheck racecheck initcheck; do
-  HORIZON_REQUIRE_GPU=1 timeout 80 compute-sanitizer --tool "$tool" --error-exitcode 1 \
+  HORIZON_REQUIRE_GPU=1 timeout 60 compute-sanitizer --tool "$tool" --error-exitcode 1 \
     "$BUILD/bin/horizon_tests" --gtest_filter="$fills" > "$OUT/$tool.log" 2>&1
   echo "$tool rc=$? $(grep -E 'ERROR SUMMARY|RACECHECK SUMMARY|PASSED|FAILED' "$OUT/$tool.log" | tr '\n' ' ')"
 done
