@@ -72,7 +72,7 @@ __device__ int sweep(int count, point_id* row, int found, Candidate candidate) {
 template <int D, bool Sorted, int Items>
 __global__ void __launch_bounds__(cell_block) cell_families(DeviceIndexView ix, PassArgs a, int narrower,
                                                             bool wider_follows) {
-  extern __shared__ __align__(16) unsigned char stage_memory[];  // sized at launch: the widest exceeds 48 KB
+  extern __shared__ __align__(16) unsigned char stage_memory[];  // sized at launch: 6, 9 or 34 KB
   Stage<Items>& s = *reinterpret_cast<Stage<Items>*>(stage_memory);
   const int warp = threadIdx.x / 32;
   const std::int64_t cells = *ix.cell_count;
@@ -152,15 +152,6 @@ __global__ void __launch_bounds__(cell_block) cell_families(DeviceIndexView ix, 
     }
     __syncthreads();  // the stage is rewritten for the next cell
   }
-}
-
-/// Whether this GPU grants a block the widest stage's shared memory (sm_80 on: 163-227 KB; a
-/// V100 has 96 KB, a T4 64 KB: there dense cells keep the unstaged sweep and the sort after).
-bool widest_stage_fits() {
-  int device = 0, most = 0;
-  HORIZON_CUDA_CHECK(cudaGetDevice(&device));
-  HORIZON_CUDA_CHECK(cudaDeviceGetAttribute(&most, cudaDevAttrMaxSharedMemoryPerBlockOptin, device));
-  return static_cast<std::size_t>(most) >= sizeof(Stage<widest_stage>);
 }
 
 /// Launches the per-cell fill over the occupied cells whose stencil holds more than

@@ -227,7 +227,7 @@ point_id* fill_rows(const DeviceIndex& index, const SearchOptions& options, cons
   const unsigned blocks = blocks_for(static_cast<std::size_t>(ix.n));
   const Fill kind = fill_kind(counts);
   const bool use_widest_stage =
-      kind == Fill::per_cell && sorted && counts.widest > Stage<wide_stage>::capacity && widest_stage_fits();
+      kind == Fill::per_cell && sorted && counts.widest > Stage<wide_stage>::capacity;
   const int staged_up_to = use_widest_stage ? Stage<widest_stage>::capacity : Stage<wide_stage>::capacity;
   // The rows a fill stores unsorted: their number, then their ids (the short-row fill's long
   // rows; the per-cell fill's rows of cells whose stencil outgrows every stage).
@@ -251,7 +251,7 @@ point_id* fill_rows(const DeviceIndex& index, const SearchOptions& options, cons
         if (counts.widest <= Stage<2>::capacity) return launch_cell_fill<true, 2, decltype(d)::value>(ix, args, stream);
         if (!use_widest_stage) return launch_cell_fill<true, wide_stage, decltype(d)::value>(ix, args, stream);
         // Dense cells (a clustered cloud's centres) staged too, in a second launch with a stage
-        // of 4096 that would leave the other cells a quarter of the blocks per SM.
+        // of 4096 (34 KB) that would leave the other cells a quarter of the blocks per SM.
         launch_cell_fill<true, wide_stage, decltype(d)::value>(ix, args, stream, 0, true);
         return launch_cell_fill<true, widest_stage, decltype(d)::value>(ix, args, stream, Stage<wide_stage>::capacity);
       case Fill::per_point:
