@@ -10,10 +10,11 @@
 
 namespace horizon::detail {
 
-/// The entries j of each row i with keep(i, j). Each entry is tested once and its verdict kept as a bit, each row's bits from a word of its
-/// own (about 1/32 of the list), then the kept entries are written straight to their place: a
-/// temporary list moved afterwards cost more, and testing twice read each candidate's point
-/// twice (measured: Verlet refresh of lattice 100, m = 3.015).
+/// The entries j of each row i with keep(i, j). Each entry is tested once and its verdict kept
+/// as a bit, each row's bits from a word of its own (about 1/32 of the list), then the kept
+/// entries are written straight to their place: a temporary list moved afterwards cost more,
+/// and testing twice read each candidate's point twice (measured: Verlet refresh of lattice
+/// 100, m = 3.015).
 template <class Keep>
 NeighborList select_entries(const NeighborList& list, Keep keep, int threads) {
   const auto n = static_cast<std::int64_t>(list.size());

@@ -74,6 +74,13 @@ PassArgs pass_args(const SearchOptions& o, std::int64_t n) {
   return a;
 }
 
+/// GPU memory a search can still take: free on the device plus what horizon's pool holds unused.
+std::size_t available_device_bytes(const MemoryMeter& meter) {
+  std::size_t free = 0, total = 0;
+  HORIZON_CUDA_CHECK(cudaMemGetInfo(&free, &total));
+  return free + pool_spare_bytes(meter.pool);
+}
+
 /// The count pass's hit bits (hit_bits.cuh): point p's words from bits + offsets[p], p its sorted position.
 struct HitBits {
   DeviceArray<std::int64_t> offsets;
@@ -99,11 +106,8 @@ HitBits hit_bits_for(const DeviceIndexView& ix, cudaStream_t stream, MemoryMeter
   std::int64_t total = 0;
   HORIZON_CUDA_CHECK(cudaMemcpyAsync(&total, hits.offsets.get() + n, sizeof(total), cudaMemcpyDeviceToHost, stream));
   HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
-  const auto bytes = static_cast<std::size_t>(total) * sizeof(unsigned);
-  std::size_t free = 0, device_total = 0;
-  HORIZON_CUDA_CHECK(cudaMemGetInfo(&free, &device_total));
-  if (bytes > (free + pool_spare_bytes(meter.pool)) / 4) return {DeviceArray<std::int64_t>(0, meter), DeviceArray<unsigned>(0, meter)};
-  hits.bits = DeviceArray<unsigned>(static_cast<std::size_t>(total), meter);
+  if (static_cast<std::size_t>(total) * sizeof(unsigned) > available_device_bytes(meter) / 4) hits.offsets.reset();
+  else hits.bits = DeviceArray<unsigned>(static_cast<std::size_t>(total), meter);
   return hits;
 }
 
@@ -282,13 +286,6 @@ point_id* fill_rows(const DeviceIndex& index, const SearchOptions& options, cons
 }
 
 #undef HORIZON_SHAPE
-
-/// GPU memory a search can still take: free on the device plus what horizon's pool holds unused.
-std::size_t available_device_bytes(const MemoryMeter& meter) {
-  std::size_t free = 0, total = 0;
-  HORIZON_CUDA_CHECK(cudaMemGetInfo(&free, &total));
-  return free + pool_spare_bytes(meter.pool);
-}
 
 void select_device(int device) {
   int count = 0;
