@@ -51,8 +51,10 @@ TEST(Cuda, BatchedHostSearchEqualsSerial) {
 
 TEST(Cuda, RowsOfEveryLengthAreSorted) {
   REQUIRE_GPU();
-  // Families of ~50 and ~100 (warp sorts), ~1000 (block sort), ~3000 (segmented sort) points.
-  for (std::size_t blob : {50u, 100u, 1000u, 3000u}) {
+  // Families of ~50 and ~100 (warp sorts), ~1000 (block sort), ~3000 (segmented sort) points;
+  // from 1000 the stencils are wide enough on average for the bits in id order (per-cell
+  // fill), and the 5000-point blob's stencil outgrows every stage (its rows sorted after).
+  for (std::size_t blob : {50u, 100u, 1000u, 3000u, 5000u}) {
     PointSet points = clustered_cloud(blob, 1, 0.01, 3, 4);
     const PointSet spread = random_cloud(5000, 3, 6);
     points.xyz.insert(points.xyz.end(), spread.xyz.begin(), spread.xyz.end());
@@ -104,6 +106,41 @@ TEST(Cuda, CellsWhoseStencilOutgrowsTheStageAreSorted) {
               << dims << " " << blob_points << " " << half << " " << batch;
         }
     }
+}
+
+TEST(Cuda, FillsWithoutHitBitsWithinAGpuMemoryLimit) {
+  REQUIRE_GPU();
+  // Lattice n = 60, m = 3.015: hit bits ~20 MB, the full list ~92 MB, the index ~15 MB. Within
+  // 60 MB the bits do not fit (they may take a quarter of what is left): the host search fills
+  // in batches, testing the candidates again. The device search under limits around list +
+  // bits keeps the list and drops the bits it counted with, or says the list does not fit.
+  const PointSet points = lattice(60);
+  const double horizon = 3.015 * 10.0 / 59;
+  for (bool half : {false, true}) {
+    SearchOptions cuda = options_for(horizon, Backend::cuda), serial = options_for(horizon, Backend::serial);
+    cuda.half = serial.half = half;
+    const NeighborList expected = search(points.view(), serial);
+    cuda.gpu_max_memory = std::size_t{60} << 20;
+    EXPECT_EQ(search(points.view(), cuda), expected) << half;
+#if defined(HORIZON_WITH_CUDA)
+    const std::size_t bytes = points.xyz.size() * sizeof(double);
+    double* device_xyz = nullptr;
+    ASSERT_EQ(cudaMalloc(&device_xyz, bytes), cudaSuccess);
+    ASSERT_EQ(cudaMemcpy(device_xyz, points.xyz.data(), bytes, cudaMemcpyHostToDevice), cudaSuccess);
+    int exact = 0;
+    for (std::size_t megabytes = 90; megabytes <= 150; megabytes += 10) {
+      cuda.gpu_max_memory = megabytes << 20;
+      try {
+        EXPECT_EQ(search_device(device_xyz, points.size(), 3, cuda).to_host(half), expected)
+            << half << " " << megabytes;
+        ++exact;
+      } catch (const DeviceOutOfMemory&) {
+      }
+    }
+    EXPECT_GT(exact, 0) << half;
+    cudaFree(device_xyz);
+#endif
+  }
 }
 
 TEST(Cuda, UnsortedRowsHoldTheSameFamilies) {

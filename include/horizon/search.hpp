@@ -39,6 +39,9 @@ struct SearchOptions {
   /// rows. The distributed layer puts its owned points first and its ghosts after.
   std::size_t queries = 0;
   std::int64_t gpu_batch_entries = 0; ///< cuda host API: most list entries per batch (0: as fit)
+  /// cuda: GPU memory, in bytes, a search sizes its list, hit bits and batches to (0: what is
+  /// free), for a solver that keeps its own arrays on the same GPU.
+  std::size_t gpu_max_memory = 0;
   /// Host memory the list may take, in bytes (0: what the system reports available). Checked
   /// once the count pass knows the list's size, before it is allocated: ListTooLarge.
   std::size_t max_memory = 0;

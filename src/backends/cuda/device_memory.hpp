@@ -49,12 +49,13 @@ inline std::size_t pool_spare_bytes(cudaMemPool_t pool) {
   return static_cast<std::size_t>(reserved - used);
 }
 
-/// Where a search's arrays come from (the device's pool, ordered on the search's stream) and
-/// the bytes they hold now and at most.
+/// Where a search's arrays come from (the device's pool, ordered on the search's stream), the
+/// bytes they hold now and at most, and the most the search is to size itself to (0: no limit).
 struct MemoryMeter {
-  MemoryMeter(int device, cudaStream_t s) : pool(device_pool(device)), stream(s) {}
+  MemoryMeter(int device, cudaStream_t s, std::size_t most = 0) : pool(device_pool(device)), stream(s), limit(most) {}
   cudaMemPool_t pool;
   cudaStream_t stream;
+  std::size_t limit;
   std::size_t now = 0, peak = 0;
 };
 
