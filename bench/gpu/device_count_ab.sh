@@ -1,15 +1,15 @@
 #!/usr/bin/env bash
 # One call on the GPU machine: the per-cell count pass (cell_count.cuh) against the
 # thread-per-point one (HORIZON_COUNT_PER_THREAD=1): the GPU suite (both), horizon_gpu_bench
-# device-resident (both), Nsight Compute kernel durations and instructions of lattice n = 200
+# (the per-cell count with host->host and openmp, the other device-resident only), Nsight Compute kernel durations and instructions of lattice n = 200
 # (both), then compute-sanitizer memcheck and racecheck over the per-cell paths' tests.
 # Usage: bash bench/gpu/device_count_ab.sh  (writes under $OUT)
 source bench/gpu/device_build.sh
 (cd "$BUILD" && HORIZON_REQUIRE_GPU=1 ctest -j 16 -R "cuda|Cuda" > "$OUT/gpu_tests.txt" 2>&1)
 grep -E "tests passed|tests failed" "$OUT/gpu_tests.txt"; grep -E "\(Failed\)|Exception" "$OUT/gpu_tests.txt" | head -20
 HORIZON_REQUIRE_GPU=1 HORIZON_COUNT_PER_THREAD=1 "$BUILD/bin/horizon_tests" --gtest_filter='Cuda.*' 2>&1 | tail -3
-bench() { "$BUILD/bin/horizon_gpu_bench" --sizes 100,200,400 --cloud-points 8000000 --reps 3 --no-host 2>>"$OUT/bench.err"; }
-bench > "$OUT/bench_cells.csv"; HORIZON_COUNT_PER_THREAD=1 bench > "$OUT/bench_thread.csv"
+bench() { "$BUILD/bin/horizon_gpu_bench" --sizes 100,200,400 --cloud-points 8000000 --reps 3 "$@" 2>>"$OUT/bench.err"; }
+bench > "$OUT/bench_cells.csv"; HORIZON_COUNT_PER_THREAD=1 bench --no-host > "$OUT/bench_thread.csv"
 for f in "$OUT"/bench_cells.csv "$OUT"/bench_thread.csv; do echo "== $f"; cut -d, -f1-12 "$f" | tail -n +2; done
 profile() {
   ncu --clock-control none --metrics gpu__time_duration.sum,smsp__inst_executed.sum --csv \
