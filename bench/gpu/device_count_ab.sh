@@ -2,7 +2,7 @@
 # One call on the GPU machine: the per-cell count pass (cell_count.cuh) against the
 # thread-per-point one (HORIZON_COUNT_PER_THREAD=1): the GPU suite (both), horizon_gpu_bench
 # (the per-cell count with host->host and openmp, the other device-resident only), Nsight Compute kernel durations and instructions of lattice n = 200
-# (both), then compute-sanitizer memcheck and racecheck over the per-cell paths' tests.
+# (both), horizon_periodic_bench, then compute-sanitizer memcheck and racecheck over the per-cell paths' tests.
 # Usage: bash bench/gpu/device_count_ab.sh  (writes under $OUT)
 source bench/gpu/device_build.sh
 (cd "$BUILD" && HORIZON_REQUIRE_GPU=1 ctest -j 16 -R "cuda|Cuda" > "$OUT/gpu_tests.txt" 2>&1)
@@ -21,8 +21,9 @@ for r in rows:
     if any(k in r[4] for k in ("count_", "fill_", "cell_families", "stencil_words", "families<")):
         print(f"{r[0]:>4} {r[-3][:28]:28} {r[-1]:>16}  {r[4][:80]}")'
 }
-profile > "$OUT/ncu_cells.txt"; HORIZON_COUNT_PER_THREAD=1 profile > "$OUT/ncu_thread.txt"
-cat "$OUT/ncu_cells.txt" "$OUT/ncu_thread.txt"
+{ echo "# per-cell count"; profile; echo "# thread-per-point count"; HORIZON_COUNT_PER_THREAD=1 profile; } > "$OUT/ncu.txt"
+cat "$OUT/ncu.txt"
+"$BUILD/bin/horizon_periodic_bench" --reps 5 > "$OUT/periodic.csv" 2>&1; cat "$OUT/periodic.csv"
 fills='Cuda.RowsOfEveryLengthAreSorted:Cuda.CellsWhoseStencilOutgrowsTheStageAreSorted:Cuda.FillsWithoutHitBitsWithinAGpuMemoryLimit'
 for tool in memcheck racecheck; do
   HORIZON_REQUIRE_GPU=1 timeout 50 compute-sanitizer --tool "$tool" --error-exitcode 1 \
