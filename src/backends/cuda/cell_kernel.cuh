@@ -6,9 +6,7 @@
 // sorted; then a warp per point of the cell sweeps the staged candidates 32 at a time, looks up
 // each one's bit, and stores each sweep's hits as one coalesced piece of the row. Every point
 // of the cell reads the candidates in id order, so rows come out sorted without a sort per row,
-// and the cell's points share one staging and one sort. When the count pass staged the stencil
-// sorted too (PassArgs::bits_by_id), each point's bits are already in id order: the stage holds
-// the sorted ids only and the warp stores each word's hits as they come. Stages hold 256, 1024 or 4096
+// and the cell's points share one staging and one sort. Stages hold 256, 1024 or 4096
 // candidates; the dense cells of a clustered cloud, past 1024, take a second launch with the
 // widest stage, so the other cells keep their blocks per SM. A stencil larger than every stage
 // is swept from global memory instead, leaving its rows unsorted: their ids go to a.spilled,
@@ -21,28 +19,36 @@
 
 #include "device_index.cuh"
 #include "hit_bits.cuh"
-#include "stencil_runs.cuh"
 
 namespace horizon::detail {
 namespace {
 
+constexpr int cell_block = 128, cell_warps = cell_block / 32;
+constexpr int most_runs = 49;  // (2k+1)^2 runs of a 3-D stencil, up to k = 3
 constexpr int wide_stage = 8;     // items per thread of the stage: 1024 candidates
 constexpr int widest_stage = 32;  // 4096 candidates, for dense cells
-static_assert(cell_block * wide_stage == by_id_limit, "the stage that reads bits in id order holds them all");
 
 template <int Items>
 struct Stage {
   static constexpr int capacity = cell_block * Items;
   using Sort = cub::BlockRadixSort<point_id, cell_block, Items, point_id>;
-  using SortIds = cub::BlockRadixSort<point_id, cell_block, Items>;
   union {
     typename Sort::TempStorage sort;  // used before the indices are written
-    typename SortIds::TempStorage sort_ids;
-    point_id index[capacity];  // walk-order index of the i-th staged candidate
+    point_id index[capacity];         // walk-order index of the i-th staged candidate
   };
   point_id id[capacity];
-  StencilRuns runs;
+  std::int64_t run_begin[most_runs];
+  int run_prefix[most_runs + 1];
+  int runs;
 };
+
+/// Sorted position of the i-th candidate of the staged stencil.
+template <int Items>
+__device__ std::int64_t position_of(const Stage<Items>& s, int i) {
+  int r = 0;
+  while (s.run_prefix[r + 1] <= i) ++r;
+  return s.run_begin[r] + (i - s.run_prefix[r]);
+}
 
 /// One warp sweeps `count` candidates for a point; `candidate(i, id)` names the i-th and says
 /// whether it is a hit. Hits are stored at row[found...] in candidate order; returns the new `found`.
@@ -70,38 +76,41 @@ __global__ void __launch_bounds__(cell_block) cell_families(DeviceIndexView ix, 
   Stage<Items>& s = *reinterpret_cast<Stage<Items>*>(stage_memory);
   const int warp = threadIdx.x / 32;
   const std::int64_t cells = *ix.cell_count;
+  const int k = ix.grid.k, reach_z = D == 3 ? k : 0;
   for (std::int64_t c = blockIdx.x; c < cells; c += gridDim.x) {
-    std::int64_t b, e;
-    cell_range(ix, c, cells, b, e);
-    list_runs<D>(ix, b, s.runs);
-    const int stencil = s.runs.size();
+    const std::int64_t b = ix.cell_first[c], e = c + 1 < cells ? ix.cell_first[c + 1] : ix.n;
+    // The stencil's runs, one per thread (their lookups are independent loads), then their
+    // prefix on one thread.
+    const int runs = (2 * k + 1) * (2 * reach_z + 1);
+    if (threadIdx.x < runs) {
+      const int dy = static_cast<int>(threadIdx.x) % (2 * k + 1) - k, dz = static_cast<int>(threadIdx.x) / (2 * k + 1) - reach_z;
+      const std::int64_t cx = ix.grid.cell_of(ix.x[b], 0), cy = ix.grid.cell_of(ix.y[b], 1);
+      const std::int64_t cz = D == 3 ? ix.grid.cell_of(ix.z[b], 2) : 0;
+      std::int64_t begin, end;
+      ix.row(cx, cy + dy, cz + dz, begin, end);
+      s.run_begin[threadIdx.x] = begin;
+      s.run_prefix[threadIdx.x + 1] = static_cast<int>(end - begin);
+    }
+    __syncthreads();
+    if (threadIdx.x == 0) {
+      s.run_prefix[0] = 0;
+      for (int r = 0; r < runs; ++r) s.run_prefix[r + 1] += s.run_prefix[r];
+      s.runs = runs;
+    }
+    __syncthreads();
+    const int stencil = s.run_prefix[s.runs];
     const bool staged = stencil <= Stage<Items>::capacity;
-    const bool by_id = Sorted && Items <= wide_stage && bits_by_id(a, stencil);
     if (stencil <= narrower || (wider_follows && !staged)) {  // another launch's cell (same for the block)
       __syncthreads();  // every thread has read the stencil before the next cell rewrites it
       continue;
     }
-    if (staged && by_id) {
-      if constexpr (Items <= wide_stage) {
-        point_id keys[Items];
-        for (int j = 0; j < Items; ++j) {
-          const int i = j * cell_block + static_cast<int>(threadIdx.x);
-          keys[j] = i < stencil ? ix.id[s.runs.position_of(i)] : static_cast<point_id>((1u << a.sort_bits) - 1);
-        }
-        typename Stage<Items>::SortIds(s.sort_ids).SortBlockedToStriped(keys, 0, a.sort_bits);
-        for (int j = 0; j < Items; ++j) {
-          const int i = j * cell_block + static_cast<int>(threadIdx.x);
-          if (i < stencil) s.id[i] = keys[j];
-        }
-      }
-      __syncthreads();
-    } else if (staged) {
+    if (staged) {
       if constexpr (Sorted) {
         point_id keys[Items], index[Items];
         for (int j = 0; j < Items; ++j) {
           const int i = j * cell_block + static_cast<int>(threadIdx.x);
           index[j] = i;
-          keys[j] = i < stencil ? ix.id[s.runs.position_of(i)]
+          keys[j] = i < stencil ? ix.id[position_of(s, i)]
                                 : static_cast<point_id>((1u << a.sort_bits) - 1);  // sorts after every id
         }
         typename Stage<Items>::Sort(s.sort).SortBlockedToStriped(keys, index, 0, a.sort_bits);
@@ -114,7 +123,7 @@ __global__ void __launch_bounds__(cell_block) cell_families(DeviceIndexView ix, 
           }
         }
       } else {
-        for (int i = threadIdx.x; i < stencil; i += cell_block) s.id[i] = ix.id[s.runs.position_of(i)];
+        for (int i = threadIdx.x; i < stencil; i += cell_block) s.id[i] = ix.id[position_of(s, i)];
       }
       __syncthreads();
     }
@@ -123,27 +132,18 @@ __global__ void __launch_bounds__(cell_block) cell_families(DeviceIndexView ix, 
       if (self >= ix.queries || self < a.first || self >= a.last) continue;
       const unsigned* words = a.bits + a.bit_offsets[p];
       point_id* row = a.out + (a.offsets[self] - a.base);
-      if (by_id) {
-        // The words are the sweeps' ballots already: store each one's hits at once.
-        const int lane = threadIdx.x % 32;
-        int found = 0;
-        for (int w = 0; w * 32 < stencil; ++w) {
-          const unsigned word = __ldg(words + w);
-          if ((word >> lane) & 1u) row[found + __popc(word & ((1u << lane) - 1))] = s.id[w * 32 + lane];
-          found += __popc(word);
-        }
-      } else if (staged) {
+      if (staged) {
         sweep(stencil, row, 0, [&](int i, point_id& id) {
           id = s.id[i];
           return is_hit(words, Sorted ? s.index[i] : i);
         });
       } else {
-        if (Sorted && a.spill_count && threadIdx.x % 32 == 0) a.spilled[atomicAdd(a.spill_count, 1u)] = self;
+        if (Sorted && threadIdx.x % 32 == 0) a.spilled[atomicAdd(a.spill_count, 1u)] = self;
         int found = 0;
-        for (int r = 0; r < s.runs.runs; ++r) {
-          const std::int64_t begin = s.runs.begin[r];
-          const int first = s.runs.prefix[r];
-          found = sweep(s.runs.prefix[r + 1] - first, row, found, [&](int i, point_id& id) {
+        for (int r = 0; r < s.runs; ++r) {
+          const std::int64_t begin = s.run_begin[r];
+          const int first = s.run_prefix[r];
+          found = sweep(s.run_prefix[r + 1] - first, row, found, [&](int i, point_id& id) {
             id = ix.id[begin + i];
             return is_hit(words, first + i);
           });
@@ -162,8 +162,14 @@ void launch_cell_fill(const DeviceIndexView& ix, const PassArgs& args, cudaStrea
                       bool wider_follows = false) {
   const auto kernel = cell_families<D, Sorted, Items>;
   constexpr int bytes = sizeof(Stage<Items>);
-  kernel<<<resident_blocks(kernel, cell_block, bytes, ix.n), cell_block, bytes, stream>>>(ix, args, narrower,
-                                                                                          wider_follows);
+  int device = 0, processors = 0, per_processor = 0;
+  HORIZON_CUDA_CHECK(cudaGetDevice(&device));
+  HORIZON_CUDA_CHECK(cudaFuncSetAttribute(kernel, cudaFuncAttributeMaxDynamicSharedMemorySize, bytes));
+  HORIZON_CUDA_CHECK(cudaDeviceGetAttribute(&processors, cudaDevAttrMultiProcessorCount, device));
+  HORIZON_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_processor, kernel, cell_block, bytes));
+  const std::int64_t most = std::max<std::int64_t>(1, ix.n);
+  const auto blocks = static_cast<unsigned>(std::min<std::int64_t>(most, std::int64_t{processors} * std::max(1, per_processor)));
+  kernel<<<blocks, cell_block, bytes, stream>>>(ix, args, narrower, wider_follows);
   check_launch("cell_families");
 }
 

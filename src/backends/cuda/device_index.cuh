@@ -193,7 +193,6 @@ struct PassArgs {
   std::int64_t base;
   unsigned* bits;                     // hit bits (hit_bits.cuh): written by the count pass...
   const std::int64_t* bit_offsets;    // ...at bits + bit_offsets[p], p the sorted position
-  bool bits_by_id;                    // narrow stencils' bits in id order (hit_bits.cuh)
 };
 
 class DeviceIndex {

@@ -5,36 +5,10 @@
 // in its row. The fills then read bits instead of coordinates and test nothing again: the
 // per-point fills visit only the hits, the per-cell fill stages ids only. One bit a candidate
 // is about a fifth of the list's bytes at k = 1 (a sixth of a 3-D stencil's candidates are hits).
-// When sorted rows will be filled per cell (PassArgs::bits_by_id), the candidates of a stencil
-// of up to by_id_limit are in id order instead: the count pass staged them sorted, and the fill
-// stores each word's hits as they come, already in row order.
 #include "device_index.cuh"
 
 namespace horizon::detail {
 namespace {
-
-constexpr int by_id_limit = 1024;
-
-/// Whether the bits of a cell whose stencil holds `stencil` candidates are in id order.
-__device__ bool bits_by_id(const PassArgs& a, int stencil) { return a.bits_by_id && stencil <= by_id_limit; }
-
-/// A warp's writer of one point's words, all lanes calling put() with the same word: lane
-/// w % 32 keeps word w, and every 32 words the warp stores them as one coalesced piece.
-struct WordWriter {
-  unsigned* words;  // null: verdicts not kept
-  unsigned mine = 0;
-  int next = 0;
-
-  __device__ void put(unsigned word) {
-    const int lane = threadIdx.x % 32;
-    if (lane == (next & 31)) mine = word;
-    if ((++next & 31) == 0 && words) words[next - 32 + lane] = mine;
-  }
-  __device__ void finish() const {
-    const int lane = threadIdx.x % 32;
-    if (words && lane < (next & 31)) words[(next & ~31) + lane] = mine;
-  }
-};
 
 /// Candidates in the stencil of the point at sorted position p.
 template <int D>

@@ -14,7 +14,6 @@
 #include <thrust/iterator/transform_iterator.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <chrono>
 #include <mutex>
 #include <sstream>
@@ -23,7 +22,6 @@
 
 #include "../../core/memory_check.hpp"
 #include "../backends.hpp"
-#include "cell_count.cuh"
 #include "cell_kernel.cuh"
 #include "device_index.cuh"
 #include "device_memory.hpp"
@@ -86,30 +84,15 @@ std::size_t available_device_bytes(const MemoryMeter& meter) {
   return std::min(available, meter.limit > meter.now ? meter.limit - meter.now : 0);
 }
 
-// A cell's staging and sort pay off only when shared by enough points: with ~3 points per
-// cell (random cloud, 8 M points, m = 1.5, H100) the per-cell fill took 3x the per-point one.
-constexpr std::int64_t cell_fill_min_points = 8;
-// Stencils of this many candidates on average, or more, are counted with the wide stage; and
-// when rows are sorted and cells hold enough points, staged sorted by id (hit_bits.cuh).
-constexpr std::int64_t wide_stencil = 256;
-
-// A/B switch while the per-cell count is measured against the thread-per-point one (removed after).
-bool count_per_thread() {
-  static const bool yes = std::getenv("HORIZON_COUNT_PER_THREAD") != nullptr;
-  return yes;
-}
-
 /// The count pass's hit bits (hit_bits.cuh): point p's words from bits + offsets[p], p its sorted position.
 struct HitBits {
   DeviceArray<std::int64_t> offsets;
   DeviceArray<unsigned> bits;
-  bool wide = false;   // stencils of wide_stencil candidates or more on average
-  bool by_id = false;  // bits of stencils up to by_id_limit in id order, for the per-cell fill
 };
 
 /// Space for every point's hit bits when they take at most a quarter of the GPU memory still
 /// free, which leaves the list (or its batches) the rest; else none, and the fill tests again.
-HitBits hit_bits_for(const DeviceIndexView& ix, bool sorted_rows, cudaStream_t stream, MemoryMeter& meter) {
+HitBits hit_bits_for(const DeviceIndexView& ix, cudaStream_t stream, MemoryMeter& meter) {
   const auto n = static_cast<std::size_t>(ix.n);
   HitBits hits{DeviceArray<std::int64_t>(n + 1, meter), DeviceArray<unsigned>(0, meter)};
   {
@@ -123,17 +106,11 @@ HitBits hit_bits_for(const DeviceIndexView& ix, bool sorted_rows, cudaStream_t s
     DeviceArray<char> temp(temp_bytes, meter);
     HORIZON_CUDA_CHECK(cub::DeviceScan::InclusiveSum(temp.get(), temp_bytes, words.get(), hits.offsets.get() + 1, ix.n, stream));
   }
-  std::int64_t total = 0, cells = 0;
+  std::int64_t total = 0;
   HORIZON_CUDA_CHECK(cudaMemcpyAsync(&total, hits.offsets.get() + n, sizeof(total), cudaMemcpyDeviceToHost, stream));
-  HORIZON_CUDA_CHECK(cudaMemcpyAsync(&cells, ix.cell_count, sizeof(cells), cudaMemcpyDeviceToHost, stream));
   HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
-  hits.wide = total * 32 >= wide_stencil * std::max<std::int64_t>(1, ix.queries);
-  if (static_cast<std::size_t>(total) * sizeof(unsigned) > available_device_bytes(meter) / 4) {
-    hits.offsets.reset();
-    return hits;
-  }
-  hits.bits = DeviceArray<unsigned>(static_cast<std::size_t>(total), meter);
-  hits.by_id = sorted_rows && hits.wide && ix.n >= cell_fill_min_points * cells && !count_per_thread();
+  if (static_cast<std::size_t>(total) * sizeof(unsigned) > available_device_bytes(meter) / 4) hits.offsets.reset();
+  else hits.bits = DeviceArray<unsigned>(static_cast<std::size_t>(total), meter);
   return hits;
 }
 
@@ -152,7 +129,7 @@ struct Counts {
 Counts count_offsets(const DeviceIndex& index, const SearchOptions& options, std::size_t count,
                      cudaStream_t stream, MemoryMeter& meter) {
   const DeviceIndexView ix = index.view(options.queries);
-  HitBits hits = hit_bits_for(ix, options.sort_rows, stream, meter);
+  HitBits hits = hit_bits_for(ix, stream, meter);
   DeviceArray<std::int64_t> counts(static_cast<std::size_t>(index.size()), meter), offsets(count + 1, meter),
       summary(5, meter);
   HORIZON_CUDA_CHECK(cudaMemsetAsync(summary.get(), 0, summary.bytes(), stream));
@@ -162,16 +139,11 @@ Counts count_offsets(const DeviceIndex& index, const SearchOptions& options, std
   args.long_rows = reinterpret_cast<unsigned long long*>(summary.get() + 4);
   args.bits = hits.bits.get();
   args.bit_offsets = hits.offsets.get();
-  args.bits_by_id = hits.by_id;
   with_shape(options.metric, ix.grid.dims, options.half, [&](auto m, auto d, auto h) {
-    if (count_per_thread()) {
-      const unsigned blocks = blocks_for(static_cast<std::size_t>(ix.n));  // images too: their counts are 0
-      count_families<HORIZON_SHAPE(m, d, h)><<<blocks, block_size, 0, stream>>>(ix, args);
-      return check_launch("count_families");
-    }
-    if (hits.wide) launch_count_cells<HORIZON_SHAPE(m, d, h), wide_stage>(ix, args, stream);
-    else launch_count_cells<HORIZON_SHAPE(m, d, h), 2>(ix, args, stream);
+    const unsigned blocks = blocks_for(static_cast<std::size_t>(ix.n));  // images too: their counts are 0
+    count_families<HORIZON_SHAPE(m, d, h)><<<blocks, block_size, 0, stream>>>(ix, args);
   });
+  check_launch("count_families");
   HORIZON_CUDA_CHECK(cudaMemsetAsync(offsets.get(), 0, sizeof(std::int64_t), stream));
   std::size_t temp_bytes = 0, max_bytes = 0;
   HORIZON_CUDA_CHECK(cub::DeviceScan::InclusiveSum(nullptr, temp_bytes, counts.get(), offsets.get() + 1,
@@ -218,6 +190,9 @@ enum class Fill {
                // stores, rows sorted afterwards (row_sort.cuh)
 };
 
+// A cell's staging and sort pay off only when shared by enough points: with ~3 points per
+// cell (random cloud, 8 M points, m = 1.5, H100) the per-cell fill took 3x the per-point one.
+constexpr std::int64_t cell_fill_min_points = 8;
 // The short-row fill takes rows longer than it stages when they are this rare: the clustered
 // cloud's (8 M points, m = 1.5) few rows past 64 sent all 8 M rows to the per-point fill and
 // sort, at 0.48x the naive kernel on an H100.
@@ -225,7 +200,6 @@ constexpr std::int64_t spill_max_fraction = 8;
 
 Fill fill_kind(const Counts& counts) {
   if (!counts.hits.bits.get()) return Fill::per_point;
-  if (counts.hits.by_id) return Fill::per_cell;  // the only fill that reads bits in id order
   if (counts.longest <= staged_row) return Fill::short_rows;
   const auto points = static_cast<std::int64_t>(counts.offsets.size()) - 1;
   if ((counts.widest <= Stage<wide_stage>::capacity || counts.longest <= block_row) &&
@@ -235,19 +209,9 @@ Fill fill_kind(const Counts& counts) {
   return Fill::per_point;
 }
 
-/// Whether sorted rows are filled unsorted and all sorted afterwards: by the per-point fill,
-/// and by the per-cell fill when a stencil outgrows every stage and rows are too long to sort
-/// on chip (a clustered cloud's centres, when the bits were staged in id order).
-bool sorts_after(const SearchOptions& options, const Counts& counts) {
-  const Fill kind = fill_kind(counts);
-  return options.sort_rows && (kind == Fill::per_point || (kind == Fill::per_cell &&
-                                                           counts.widest > Stage<widest_stage>::capacity &&
-                                                           counts.longest > block_row));
-}
-
 /// Whether the rows need the segmented sort and its second buffer.
 bool needs_spare(const SearchOptions& options, const Counts& counts) {
-  return sorts_after(options, counts) && counts.longest > block_row;
+  return options.sort_rows && fill_kind(counts) == Fill::per_point && counts.longest > block_row;
 }
 
 /// Fills (and sorts) the rows of ids [first, last): their entries go to rows_out, which holds
@@ -274,9 +238,8 @@ point_id* fill_rows(const DeviceIndex& index, const SearchOptions& options, cons
   const int staged_up_to = use_widest_stage ? Stage<widest_stage>::capacity : Stage<wide_stage>::capacity;
   // The rows a fill stores unsorted: their number, then their ids (the short-row fill's long
   // rows; the per-cell fill's rows of cells whose stencil outgrows every stage).
-  const bool sort_after = sorts_after(options, counts);
-  const bool spills = sorted && !sort_after && ((kind == Fill::short_rows && counts.long_rows > 0) ||
-                                                (kind == Fill::per_cell && counts.widest > staged_up_to));
+  const bool spills = sorted && ((kind == Fill::short_rows && counts.long_rows > 0) ||
+                                 (kind == Fill::per_cell && counts.widest > staged_up_to));
   const std::int64_t most_spilled = kind == Fill::short_rows ? counts.long_rows : last - first;
   DeviceArray<point_id> spilled(spills ? static_cast<std::size_t>(most_spilled) + 1 : 0, meter);
   if (spills) {
@@ -309,7 +272,7 @@ point_id* fill_rows(const DeviceIndex& index, const SearchOptions& options, cons
     const RowSet set{offsets + first, base, most_spilled, args.spilled, args.spill_count, first};
     sort_rows_on_chip(rows_out, set, kind == Fill::short_rows ? staged_row + 1 : 0, counts.longest, stream);
   }
-  if (!sort_after) return rows_out;
+  if (!sorted || kind != Fill::per_point) return rows_out;
   if (counts.longest <= block_row) {
     sort_rows_on_chip(rows_out, RowSet{offsets + first, base, rows}, 0, counts.longest, stream);
     return rows_out;
