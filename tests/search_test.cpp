@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "datasets.hpp"
 #include "same_families.hpp"
 #include "horizon/error.hpp"
 #include "horizon/generate.hpp"
@@ -54,6 +55,23 @@ TEST(Backends, OpenmpEqualsSerialOnLargerClouds) {
     openmp.threads = 3;
     EXPECT_EQ(search(points.view(), serial), search(points.view(), openmp));
   }
+}
+
+// The count pass tests each pair once, over slabs of cell layers two threads never share (one
+// parity at a time): slabs of a few points each at 16 threads, every dataset, k = 1 and 2.
+TEST(Backends, CountingEachPairOnceMatchesBruteForceOnAnyThreadCount) {
+  for (const int dims : {2, 3})
+    for (const auto& data : testing::datasets(dims))
+      for (const bool half : {false, true}) {
+        const NeighborList expected = brute_force(data.points.view(), testing::options_for(data, Metric::euclidean, 1, half));
+        for (const int k : {1, 2})
+          for (const int threads : {1, 2, 7, 16}) {
+            SearchOptions options = testing::options_for(data, Metric::euclidean, k, half, Backend::openmp);
+            options.threads = threads;
+            EXPECT_EQ(search(data.points.view(), options), expected)
+                << data.name << " " << dims << "-D half " << half << " k " << k << " threads " << threads;
+          }
+      }
 }
 
 TEST(Backends, MoreThreadsThanPoints) {

@@ -59,12 +59,22 @@ public:
   /// are skipped; rows come in ascending position order. Returns the number of ranges written.
   int stencil(std::size_t c, Range* out) const;
 
+  /// The half of that stencil which comes after cell c in the sort, so that each pair of
+  /// points is in the stencil of exactly one of their cells, or both in one cell: first the run
+  /// of cells cx .. cx+k (cell c's own points first), then the rows (cy+dy, cz) for dy = 1..k
+  /// and (cy+dy, cz+dz) for dz = 1..k. Writes at most max_stencil_rows() ranges.
+  int upper_stencil(std::size_t c, Range* out) const;
+
+  /// Coordinate of occupied cell c along the slowest axis of the sort (z in 3-D, y in 2-D): cells
+  /// are sorted by it, and an upper stencil reaches layers layer(c) .. layer(c) + k.
+  std::int64_t layer(std::size_t c) const { return cell_coord_[c][grid_.dims == 3 ? 0 : 1]; }
+
   /// Largest number of ranges stencil() can write: (2k+1)^(dims-1).
   int max_stencil_rows() const;
 
 private:
-  Range row_dense(std::int64_t cx, std::int64_t cy, std::int64_t cz) const;
-  Range row_sparse(std::int64_t cx, std::int64_t cy, std::int64_t cz) const;
+  /// The run of sorted positions of cells x_first .. x_last of the row of cells (cy, cz).
+  Range row(std::int64_t x_first, std::int64_t x_last, std::int64_t cy, std::int64_t cz) const;
 
   template <class Coordinate>
   void sort_dense(const Coordinate& coordinate, int threads);

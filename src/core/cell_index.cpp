@@ -147,19 +147,14 @@ int CellIndex::max_stencil_rows() const {
   return grid_.dims == 3 ? width * width : width;
 }
 
-CellIndex::Range CellIndex::row_dense(std::int64_t cx, std::int64_t cy, std::int64_t cz) const {
-  const std::int64_t k = grid_.cells_per_horizon;
-  const auto first = static_cast<std::size_t>(grid_.linear_id(cx - k, cy, cz));
-  const auto last = static_cast<std::size_t>(grid_.linear_id(cx + k, cy, cz));
-  return {start_by_id_[first], start_by_id_[last + 1]};
-}
-
-CellIndex::Range CellIndex::row_sparse(std::int64_t cx, std::int64_t cy, std::int64_t cz) const {
-  const std::int64_t k = grid_.cells_per_horizon;
-  const auto first = std::lower_bound(cell_coord_.begin(), cell_coord_.end(),
-                                      std::array<std::int64_t, 3>{cz, cy, cx - k});
-  const auto last = std::lower_bound(first, cell_coord_.end(),
-                                     std::array<std::int64_t, 3>{cz, cy, cx + k + 1});
+CellIndex::Range CellIndex::row(std::int64_t x_first, std::int64_t x_last, std::int64_t cy, std::int64_t cz) const {
+  if (grid_.dense) {
+    const auto first = static_cast<std::size_t>(grid_.linear_id(x_first, cy, cz));
+    const auto last = static_cast<std::size_t>(grid_.linear_id(x_last, cy, cz));
+    return {start_by_id_[first], start_by_id_[last + 1]};
+  }
+  const auto first = std::lower_bound(cell_coord_.begin(), cell_coord_.end(), std::array<std::int64_t, 3>{cz, cy, x_first});
+  const auto last = std::lower_bound(first, cell_coord_.end(), std::array<std::int64_t, 3>{cz, cy, x_last + 1});
   return {cell_begin_[static_cast<std::size_t>(first - cell_coord_.begin())],
           cell_begin_[static_cast<std::size_t>(last - cell_coord_.begin())]};
 }
@@ -171,7 +166,21 @@ int CellIndex::stencil(std::size_t c, Range* out) const {
   int rows = 0;
   for (std::int64_t dz = -reach_z; dz <= reach_z; ++dz)
     for (std::int64_t dy = -k; dy <= k; ++dy) {
-      const Range r = grid_.dense ? row_dense(cx, cy + dy, cz + dz) : row_sparse(cx, cy + dy, cz + dz);
+      const Range r = row(cx - k, cx + k, cy + dy, cz + dz);
+      if (r.end > r.begin) out[rows++] = r;
+    }
+  return rows;
+}
+
+int CellIndex::upper_stencil(std::size_t c, Range* out) const {
+  const std::int64_t k = grid_.cells_per_horizon;
+  const std::int64_t reach_z = grid_.dims == 3 ? k : 0;
+  const auto [cz, cy, cx] = cell_coord_[c];
+  out[0] = row(cx, cx + k, cy, cz);  // never empty: it starts with cell c
+  int rows = 1;
+  for (std::int64_t dz = 0; dz <= reach_z; ++dz)
+    for (std::int64_t dy = dz == 0 ? 1 : -k; dy <= k; ++dy) {
+      const Range r = row(cx - k, cx + k, cy + dy, cz + dz);
       if (r.end > r.begin) out[rows++] = r;
     }
   return rows;

@@ -34,14 +34,61 @@ std::vector<CellRun> split_into_runs(const CellIndex& index, int threads) {
 
 namespace {
 
-/// Row offsets of every point: the count pass over `runs`, scanned.
+/// Slabs of whole layers of cells (CellIndex::layer) holding about equal numbers of points, 8
+/// per thread. An upper stencil reaches k layers up, so when every slab but the last spans at
+/// least k layers, a slab's pairs land in it and the next one only: slabs of one parity can be
+/// counted at once.
+std::vector<CellRun> split_into_slabs(const CellIndex& index, int threads) {
+  const std::size_t cells = index.occupied_cells();
+  const std::int64_t k = index.grid().cells_per_horizon;
+  const std::size_t points_per_slab = std::max<std::size_t>(1, index.point_count() / (static_cast<std::size_t>(threads) * 8));
+  std::vector<CellRun> slabs;
+  std::size_t first = 0;
+  for (std::size_t c = 1; c < cells; ++c)
+    if (index.layer(c) != index.layer(c - 1) && index.layer(c) - index.layer(first) >= k &&
+        static_cast<std::size_t>(index.points_of(c).begin - index.points_of(first).begin) >= points_per_slab) {
+      slabs.push_back(CellRun{first, c});
+      first = c;
+    }
+  if (first < cells) slabs.push_back(CellRun{first, cells});
+  return slabs;
+}
+
+/// Whether count_each_pair_once() gives the counts: every point holds a row, with one horizon.
+bool pairs_countable(const FamilyPass& pass) {
+  const CellIndex& index = *pass.index;
+  const std::size_t queries = pass.options->queries;
+  return !pass.row_radius && index.row_count() == index.point_count() && (queries == 0 || queries >= index.row_count());
+}
+
+/// Row offsets of every point: the count pass over `runs` (or each pair once, over slabs),
+/// scanned.
 Buffer<std::int64_t> count_rows(FamilyPass& pass, const std::vector<CellRun>& runs, int threads) {
+  const CellIndex& index = *pass.index;
   const auto run_count = static_cast<std::int64_t>(runs.size());
-  Buffer<std::int64_t> offsets(pass.index->row_count() + 1);
-  std::memset(offsets.data(), 0, offsets.size() * sizeof(std::int64_t));
+  const auto n = static_cast<std::int64_t>(index.row_count());
+  Buffer<std::int64_t> offsets(index.row_count() + 1);
+  offsets[0] = 0;
   pass.offsets = offsets.data();
+  if (pairs_countable(pass)) {
+    ScratchBuffer<std::int64_t> counts(index.point_count() + CellIndex::padding);
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+    for (std::int64_t p = 0; p < static_cast<std::int64_t>(counts.size()); ++p) counts[p] = 0;
+    const std::vector<CellRun> slabs = split_into_slabs(index, threads);
+    const auto slab_count = static_cast<std::int64_t>(slabs.size());
+    for (std::int64_t parity = 0; parity < 2; ++parity) {
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
-  for (std::int64_t r = 0; r < run_count; ++r) count_families(pass, runs[static_cast<std::size_t>(r)]);
+      for (std::int64_t s = parity; s < slab_count; s += 2)
+        count_each_pair_once(pass, slabs[static_cast<std::size_t>(s)], counts.data());
+    }
+    const point_id* order = index.order().data();
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+    for (std::int64_t p = 0; p < n; ++p) offsets[order[p] + 1] = counts[p];
+  } else {
+    std::memset(offsets.data(), 0, offsets.size() * sizeof(std::int64_t));
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
+    for (std::int64_t r = 0; r < run_count; ++r) count_families(pass, runs[static_cast<std::size_t>(r)]);
+  }
   inclusive_scan(offsets.data(), offsets.size(), threads);
   return offsets;
 }

@@ -38,6 +38,11 @@ struct FamilyPass {
 /// instruction set; the best one this CPU has runs (as for fill_families).
 void count_families(const FamilyPass& pass, CellRun run);
 
+/// The same counts with each pair of points tested once, for one point set and one horizon
+/// (no per-point radii, query subset or periodic images): counts[p] += the family size of the
+/// point at sorted position p, for the points of the run and those after it in the stencil.
+void count_each_pair_once(const FamilyPass& pass, CellRun run, std::int64_t* counts);
+
 /// Writes the family of each point i of the run to indices[offsets[i] ...] (offsets scanned),
 /// ascending when options.sort_rows.
 void fill_families(const FamilyPass& pass, CellRun run);
