@@ -295,4 +295,16 @@ TEST_F(CliTest, MaxMemoryStreamsTheListToItsFilesOrRefusesIt) {
   expect_refused("search lattice:30 --horizon 1.005 --max-memory lots", "expected a size");
 }
 
+TEST_F(CliTest, GpuMaxMemoryIsASize) {
+  // The GPU's limit (SearchOptions::gpu_max_memory; Cuda.FillsWithoutHitBitsWithinAGpuMemoryLimit
+  // tests what it does): the same list as without it, and a clear refusal of a non-size.
+  ASSERT_EQ(run("search lattice:30 --horizon 1.005 --out whole --quiet").status, 0);
+  ASSERT_EQ(run("search lattice:30 --horizon 1.005 --gpu-max-memory 60M --out limited --quiet").status, 0);
+  for (const char* file : {".offsets.npy", ".indices.npy"}) {
+    std::ifstream a(dir_ / ("whole" + std::string(file)), std::ios::binary), b(dir_ / ("limited" + std::string(file)), std::ios::binary);
+    EXPECT_TRUE(std::equal(std::istreambuf_iterator<char>(a), {}, std::istreambuf_iterator<char>(b), {})) << file;
+  }
+  expect_refused("search lattice:30 --horizon 1.005 --gpu-max-memory -2G", "--gpu-max-memory -2G: expected a size");
+}
+
 }  // namespace

@@ -17,6 +17,7 @@ struct SearchArgs {
   std::string exchange, decomposition = "rcb", writer = "auto";  // distributed runs only
   std::string gpus;                             // cuda: "all", a count, or a list of devices
   std::string max_memory;                       // e.g. 8G, 512M; empty: what is available
+  std::string gpu_max_memory;                   // the same for the GPU; empty: what is free
   std::string box;                              // periodic box "Lx,Ly[,Lz]", 0: open axis
   std::string queries;                          // query points; the input is then the references
   std::string vtk;                              // ParaView file (.vtu) of the points

@@ -230,8 +230,9 @@ std::array<double, 3> parse_box(const std::string& text) {
   return box;
 }
 
-/// --max-memory: bytes, or a number with K, M, G or T (powers of 1024).
-std::size_t parse_memory(const std::string& text) {
+/// --max-memory and --gpu-max-memory (`option`): bytes, or a number with K, M, G or T (powers
+/// of 1024).
+std::size_t parse_memory(const std::string& option, const std::string& text) {
   if (text.empty()) return 0;
   std::size_t used = 0;
   double value = 0;
@@ -247,7 +248,7 @@ std::size_t parse_memory(const std::string& text) {
     scale = std::pow(1024.0, 1 + static_cast<double>(units.find(static_cast<char>(std::toupper(unit[0])))));
   else if (!unit.empty())
     used = 0;
-  if (used == 0 || !(value > 0)) throw Error("--max-memory " + text + ": expected a size such as 512M or 8G");
+  if (used == 0 || !(value > 0)) throw Error(option + " " + text + ": expected a size such as 512M or 8G");
   return static_cast<std::size_t>(value * scale);
 }
 
@@ -262,7 +263,8 @@ SearchOptions search_options(const SearchArgs& args) {
   options.threads = args.threads;
   options.device = args.device;
   options.devices = parse_gpus(args.gpus);
-  options.max_memory = parse_memory(args.max_memory);
+  options.max_memory = parse_memory("--max-memory", args.max_memory);
+  options.gpu_max_memory = parse_memory("--gpu-max-memory", args.gpu_max_memory);
   options.box = parse_box(args.box);
   return options;
 }
@@ -297,6 +299,8 @@ void add_search(CLI::App& app) {
   cmd->add_option("--threads", args->threads, "openmp threads (0: all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--device", args->device, "cuda device")->check(CLI::NonNegativeNumber);
   cmd->add_option("--max-memory", args->max_memory, "most host memory the list may take, e.g. 8G (default: what is available)");
+  cmd->add_option("--gpu-max-memory", args->gpu_max_memory,
+                  "cuda: most GPU memory the search may take, e.g. 2G, for a solver sharing the GPU (default: what is free)");
   cmd->add_option("--gpus", args->gpus, "cuda: all, a count N, or devices 0,1,...: one part of the points per GPU");
   cmd->add_option("--metric", args->metric, "l2, l1 or linf")->check(CLI::IsMember({"l2", "l1", "linf"}));
   cmd->add_option("--cells-per-horizon", args->cells_per_horizon, "k: cell side horizon/k")

@@ -11,6 +11,7 @@ The list is exact (the same bits from every backend) and rows are sorted by id u
 sort_rows=False. Errors raise ValueError (bad input) or MemoryError with horizon's message.
 """
 import json
+import operator
 import os
 
 import numpy as np
@@ -287,7 +288,8 @@ def _periods(box, dims):
 
 
 def search(points, horizon=None, *, backend="auto", metric="l2", half=False, sort_rows=True, threads=0, device=0,
-           devices=None, cells_per_horizon=1, box=None, references=None, radii=None, radius_rule="gather"):
+           devices=None, cells_per_horizon=1, box=None, references=None, radii=None, radius_rule="gather",
+           gpu_max_memory=0):
     """The neighbour list of `points` ((N, 2) or (N, 3) array-like, float64 or float32, any
     order): row i holds every j != i with distance(i, j) < horizon.
 
@@ -303,7 +305,9 @@ def search(points, horizon=None, *, backend="auto", metric="l2", half=False, sor
     radii: instead of horizon, one radius per point (N floats, finite and > 0) and radius_rule says
     which a pair is tested with: "gather" (d < r_i, scipy's query_ball_point with an array of r),
     "scatter" (d < r_j), "max" or "min" (d < max/min(r_i, r_j); the only rules with half=True);
-    with references, one radius per query and the gather rule only.
+    with references, one radius per query and the gather rule only;
+    gpu_max_memory: most bytes of GPU memory the search may take (0: what is free), for a solver
+    that keeps its own arrays on the same GPU.
 
     A CUDA array (__cuda_array_interface__: CuPy, PyTorch; float64, C-contiguous) is searched
     where it lies, on its GPU and stream, and gives a DeviceNeighborList (backend, threads and
@@ -329,11 +333,18 @@ def search(points, horizon=None, *, backend="auto", metric="l2", half=False, sor
     owned = _horizon.search(array, 0.0 if horizon is None else float(horizon), metric, bool(half), bool(sort_rows),
                             backend, int(threads), int(device), [int(d) for d in (devices or [])],
                             int(cells_per_horizon), _periods(box, array.shape[1]), reference_array, radius_array,
-                            str(radius_rule))
+                            str(radius_rule), _byte_count(gpu_max_memory, "gpu_max_memory"))
     offsets, indices = owned.offsets, owned.indices
     offsets.flags.writeable = False
     indices.flags.writeable = False
     return NeighborList(offsets, indices, half, None if reference_array is None else len(reference_array))
+
+
+def _byte_count(value, name):
+    count = operator.index(value)
+    if count < 0:
+        raise ValueError(f"{name}: expected a number of bytes >= 0, not {count}")
+    return count
 
 
 def load(prefix, half=False):

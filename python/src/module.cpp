@@ -76,7 +76,7 @@ OwnedList search(py::array points, double horizon, const std::string& metric, bo
                  const std::string& backend, int threads, int device, const std::vector<int>& devices,
                  int cells_per_horizon, const std::array<double, 3>& box, std::optional<py::array> references,
                  std::optional<py::array_t<double, py::array::c_style | py::array::forcecast>> radii,
-                 const std::string& radius_rule) {
+                 const std::string& radius_rule, std::size_t gpu_max_memory) {
   const horizon::PointView view = point_view(points);
   horizon::SearchOptions options = options_of(horizon, metric, half, sort_rows, cells_per_horizon);
   options.backend = horizon::parse_backend(backend);
@@ -84,6 +84,7 @@ OwnedList search(py::array points, double horizon, const std::string& metric, bo
   options.device = device;
   options.devices = devices;
   options.box = box;
+  options.gpu_max_memory = gpu_max_memory;
   if (radii) {
     const std::span<const double> values(radii->data(), static_cast<std::size_t>(radii->size()));
     const horizon::RadiusRule rule = horizon::parse_radius_rule(radius_rule);
@@ -241,7 +242,7 @@ PYBIND11_MODULE(_horizon, m) {
   m.def("search", &search, py::arg("points"), py::arg("horizon"), py::arg("metric"), py::arg("half"),
         py::arg("sort_rows"), py::arg("backend"), py::arg("threads"), py::arg("device"), py::arg("devices"),
         py::arg("cells_per_horizon"), py::arg("box"), py::arg("references"), py::arg("radii"),
-        py::arg("radius_rule"));
+        py::arg("radius_rule"), py::arg("gpu_max_memory"));
   m.def("build_verlet", &build_verlet, py::arg("points"), py::arg("horizon"), py::arg("skin"), py::arg("metric"),
         py::arg("half"), py::arg("sort_rows"), py::arg("backend"), py::arg("threads"), py::arg("device"),
         py::arg("cells_per_horizon"));

@@ -115,6 +115,17 @@ def test_clear_errors():
         horizon.search(horizon.random_cloud(10), 0.5, backend="serial", devices=[0, 1])
 
 
+def test_gpu_max_memory_gives_the_same_list():
+    # 216,000 points, a 105 MB list: on a GPU, a 60 MB limit makes the search fill it in batches.
+    points = horizon.lattice(60)
+    expected = horizon.search(points, 0.5025, backend="serial")
+    backend = "cuda" if horizon.backend_available("cuda") else "serial"
+    limited = horizon.search(points, 0.5025, backend=backend, gpu_max_memory=60 << 20)
+    assert np.array_equal(limited.offsets, expected.offsets) and np.array_equal(limited.indices, expected.indices)
+    with pytest.raises(ValueError, match="gpu_max_memory"):
+        horizon.search(points, 0.5025, gpu_max_memory=-1)
+
+
 def test_the_gil_is_released_during_a_search():
     points = horizon.random_cloud(300000, seed=8)
     ticks = []
