@@ -4,7 +4,7 @@
 # whole search of this tree and of .deps/old-src (built without CUDA), alternating.
 # Usage: bash bench/gpu/device_count_pairs.sh  (writes under $OUT)
 source bench/gpu/device_build.sh
-(cd "$BUILD" && HORIZON_REQUIRE_GPU=1 ctest -j 8 -R "cuda|Cuda" > "$OUT/gpu_tests.txt" 2>&1)
+(cd "$BUILD" && HORIZON_REQUIRE_GPU=1 ctest -j 8 -R "cuda|Cuda|GpuMaxMemory" > "$OUT/gpu_tests.txt" 2>&1)
 grep -E "tests passed|tests failed" "$OUT/gpu_tests.txt"
 P=bench/results/count_each_pair_once
 CUDA_LIB="-L/usr/local/cuda/lib64 -L/usr/local/cuda/targets/x86_64-linux/lib -lcudart"
