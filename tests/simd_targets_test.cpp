@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <map>
+#include <numeric>
+#include <random>
 #include <string>
 #include <tuple>
 
@@ -59,6 +61,41 @@ TEST(SimdTargets, EveryTargetThisCpuRunsMatchesBruteForce) {
 #else
   EXPECT_GE(targets_run, 2) << "a portable build dispatches to this CPU's best target and fallbacks";
 #endif
+}
+
+// Rows of every length from 0 to 80 ids, arriving in random id order: every size of the
+// in-register sorting network (1, 2 and 4 vectors of each target), its padding, and the longer
+// rows sorted otherwise. Group g is g + 1 points at one spot, far from the others.
+TEST(SimdTargets, RowsOfEveryLengthAreSortedOnEveryTarget) {
+  std::vector<double> xyz;
+  for (int group = 0; group <= 80; ++group)
+    for (int member = 0; member <= group; ++member) xyz.insert(xyz.end(), {10.0 * group, 0.5 * (group % 3), 0.0});
+  const std::size_t n = xyz.size() / 3;
+  std::vector<std::size_t> shuffled(n);
+  std::iota(shuffled.begin(), shuffled.end(), std::size_t{0});
+  std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937(7));
+  std::vector<double> points(xyz.size());
+  for (std::size_t i = 0; i < n; ++i)
+    for (int a = 0; a < 3; ++a) points[3 * shuffled[i] + a] = xyz[3 * i + a];
+  const PointView view(points.data(), n, 3);
+  const std::int64_t supported = hwy::SupportedTargets();
+  for (const std::int64_t target : {HWY_AVX3_DL, HWY_AVX3, HWY_AVX2, HWY_SSE4, HWY_SSSE3, HWY_EMU128}) {
+    if (!(supported & target)) continue;
+    hwy::SetSupportedTargetsForTest(target);
+    if (std::string(cpu_simd_target()) != hwy::TargetName(target)) continue;
+    for (Backend backend : {Backend::serial, Backend::openmp})
+      for (bool half : {false, true}) {
+        SearchOptions options;
+        options.horizon = 1.0;
+        options.backend = backend;
+        options.half = half;
+        const NeighborList list = search(view, options);
+        const NeighborList expected = brute_force(view, options);
+        EXPECT_EQ(list.offsets(), expected.offsets()) << hwy::TargetName(target);
+        EXPECT_EQ(list.indices(), expected.indices()) << hwy::TargetName(target) << (half ? " half" : "");
+      }
+  }
+  hwy::SetSupportedTargetsForTest(0);
 }
 
 }  // namespace

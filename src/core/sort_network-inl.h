@@ -2,7 +2,10 @@
 // with AVX-512, 32 with AVX2), padded with the largest id. An insertion sort of the 18-id rows
 // of m = 1.5 mispredicts a branch per move when ids arrive in random order (AMD Zen 5: 350 ns
 // a row; sorting took 60 % of the fill pass of a shuffled lattice); the network takes the same
-// few dozen min/max/permute steps whatever the order (32 ns for 17-32 ids, 22 ns up to 16).
+// few dozen min/max/shuffle steps whatever the order. Every step is a constant shuffle within
+// 128-bit blocks or a block swap, and a blend with an immediate: with a general lane permute
+// (vpermd) and variable blends, rows of 17-32 ids took 79 ns on AMD Zen 3 (AVX2), 34.5 ns now;
+// up to 16 ids 28 ns, 13 ns now.
 // Highway per-target header (included once per instruction set by foreach_target).
 #if defined(HORIZON_SORT_NETWORK_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef HORIZON_SORT_NETWORK_INL_H_
@@ -21,57 +24,96 @@ namespace horizon::detail {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
+/// Lane i of `x` moved to lane i ^ Xor (Xor < lanes), by shuffles within 128-bit blocks and
+/// block swaps: a general lane permute (vpermd) is two uops with a long latency on AMD Zen 2/3.
+template <int Xor, class D, class V>
+HWY_INLINE V PartnerLanes(D d, V x) {
+#if HWY_TARGET != HWY_SCALAR  // (which has none of these; its rows are not sorted here)
+  if constexpr (hn::MaxLanes(d) <= 16) {
+    if constexpr ((Xor & 8) != 0) x = hn::ConcatLowerUpper(d, x, x);
+    if constexpr ((Xor & 4) != 0) x = hn::SwapAdjacentBlocks(x);
+    if constexpr ((Xor & 3) == 1) return hn::Shuffle2301(x);
+    if constexpr ((Xor & 3) == 2) return hn::Shuffle1032(x);
+    if constexpr ((Xor & 3) == 3) return hn::Shuffle0123(x);
+    return x;
+  }
+#endif
+  return hn::TableLookupLanes(x, hn::IndicesFromVec(d, hn::Xor(hn::Iota(d, 0), hn::Set(d, Xor))));
+}
+
+/// The lanes with bit J set from `upper`, the others from `lower`, by blends with an immediate.
+template <int J, class D, class V>
+HWY_INLINE V BlendUpperLanes(D d, V upper, V lower) {
+#if HWY_TARGET != HWY_SCALAR
+  if constexpr (hn::MaxLanes(d) <= 16) {
+    if constexpr (J == 1) return hn::OddEven(upper, lower);
+    if constexpr (J == 2) {
+      const hn::Repartition<std::uint64_t, D> d64;
+      return hn::BitCast(d, hn::OddEven(hn::BitCast(d64, upper), hn::BitCast(d64, lower)));
+    }
+    if constexpr (J == 4) return hn::OddEvenBlocks(upper, lower);
+    if constexpr (J == 8) return hn::ConcatUpperLower(d, upper, lower);
+  }
+#endif
+  return hn::IfThenElse(hn::Ne(hn::And(hn::Iota(d, 0), hn::Set(d, J)), hn::Zero(d)), upper, lower);
+}
+
+/// Each lane paired with lane i ^ Xor: the one with bit J set keeps the larger.
+template <int Xor, int J, class D, class V>
+HWY_INLINE V Exchange(D d, V x) {
+  const V partner = PartnerLanes<Xor>(d, x);
+  return BlendUpperLanes<J>(d, hn::Max(x, partner), hn::Min(x, partner));
+}
+
+/// The halving steps of a bitonic merge: element i against i ^ J, J = J0, J0 / 2, ... 1.
+template <int vectors, int J, class D, class V>
+HWY_INLINE void HalveBlocks(D d, V* v) {
+  if constexpr (J >= 1) {
+    constexpr int lanes = static_cast<int>(hn::MaxLanes(d));
+    if constexpr (J >= lanes) {
+      constexpr int step = J / lanes;
+#pragma GCC unroll 8
+      for (int a = 0; a < vectors; ++a) {
+        if ((a & step) || a + step >= vectors) continue;
+        const V low = hn::Min(v[a], v[a + step]), high = hn::Max(v[a], v[a + step]);
+        v[a] = low;
+        v[a + step] = high;
+      }
+    } else {
+#pragma GCC unroll 8
+      for (int a = 0; a < vectors; ++a) v[a] = Exchange<J, J>(d, v[a]);
+    }
+    HalveBlocks<vectors, J / 2>(d, v);
+  }
+}
+
 /// Sorts the N = vectors * Lanes(d) ids of `v` ascending (N a power of two) by a bitonic network
-/// in the form without directions: each merge of two sorted blocks of k/2 compares element i
-/// with its mirror in the block (i ^ (k - 1)), then halves (i ^ j, j = k/4 ... 1); the lower
+/// in the form without directions: each merge of two sorted blocks of K/2 compares element i
+/// with its mirror in the block (i ^ (K - 1)), then halves (i ^ J, J = K/4 ... 1); the lower
 /// index always takes the minimum. Element i = vector * lanes + lane: exchanges across vectors
-/// are whole-vector min/max (the mirror reverses lanes), those within a vector permute lanes
-/// with one constant index vector and mask per distance.
-template <int vectors, class D, class V = hn::VFromD<D>>
+/// are whole-vector min/max (the mirror reverses lanes), those within a vector shuffle lanes.
+/// Unrolled at compile time, so that every shuffle and blend is a constant one.
+template <int vectors, int K = 2, class D, class V = hn::VFromD<D>>
 HWY_INLINE void BitonicSort(D d, V* v) {
   constexpr int lanes = static_cast<int>(hn::MaxLanes(d));
-  constexpr int n = vectors * lanes;
-  const auto lane = hn::Iota(d, 0);
-  // Within a vector: partner i ^ j and the upper lanes (bit j set) for j = 1, 2, 4, ...; the
-  // mirror i ^ (k - 1) for k = 2, 4, ... (its upper lanes are those of j = k / 2).
-  auto upper = [&](int j) { return hn::Ne(hn::And(lane, hn::Set(d, j)), hn::Zero(d)); };
-  auto exchange = [&](V x, int partner_xor, int j) {
-    const V partner = hn::TableLookupLanes(x, hn::IndicesFromVec(d, hn::Xor(lane, hn::Set(d, partner_xor))));
-    return hn::IfThenElse(upper(j), hn::Max(x, partner), hn::Min(x, partner));
-  };
+  if constexpr (K <= vectors * lanes) {
+    if constexpr (K <= lanes) {
 #pragma GCC unroll 8
-  for (int k = 2; k <= n; k *= 2) {
-    if (k <= lanes) {
-#pragma GCC unroll 8
-      for (int a = 0; a < vectors; ++a) v[a] = exchange(v[a], k - 1, k / 2);
+      for (int a = 0; a < vectors; ++a) v[a] = Exchange<K - 1, K / 2>(d, v[a]);
     } else {
-      const int block = k / lanes;  // vectors per block of k
+      constexpr int block = K / lanes;  // vectors per block of K
 #pragma GCC unroll 8
       for (int a = 0; a < vectors; ++a) {
         const int first = a / block * block, mirror = first + block - 1 - (a - first);
         if (a >= mirror || mirror >= vectors) continue;  // (the bound for GCC's -Warray-bounds)
-        const V reversed = hn::Reverse(d, v[mirror]);
+        const V reversed = PartnerLanes<lanes - 1>(d, v[mirror]);
         const V low = hn::Min(v[a], reversed), high = hn::Max(v[a], reversed);
         v[a] = low;
-        v[mirror] = hn::Reverse(d, high);
+        v[mirror] = PartnerLanes<lanes - 1>(d, high);
       }
     }
-#pragma GCC unroll 8
-    for (int j = k / 4; j >= 1; j /= 2) {
-      if (j >= lanes) {
-        const int step = j / lanes;
-#pragma GCC unroll 8
-        for (int a = 0; a < vectors; ++a) {
-          if ((a & step) || a + step >= vectors) continue;
-          const V low = hn::Min(v[a], v[a + step]), high = hn::Max(v[a], v[a + step]);
-          v[a] = low;
-          v[a + step] = high;
-        }
-      } else {
-#pragma GCC unroll 8
-        for (int a = 0; a < vectors; ++a) v[a] = exchange(v[a], j, j);
-      }
-    }
+    HalveBlocks<vectors, K / 4>(d, v);
+    BitonicSort<vectors, 2 * K>(d, v);
   }
 }
 
