@@ -1,5 +1,5 @@
-// A short row of ids sorted in SIMD registers by a bitonic network: up to four vectors (64 ids
-// with AVX-512, 32 with AVX2), padded with the largest id. An insertion sort of the 18-id rows
+// A short row of ids sorted in SIMD registers by a bitonic network: up to 64 ids (AVX2, AVX-512; 32
+// with SSE4), padded with the largest id. An insertion sort of the 18-id rows
 // of m = 1.5 mispredicts a branch per move when ids arrive in random order (AMD Zen 5: 350 ns
 // a row; sorting took 60 % of the fill pass of a shuffled lattice); the network takes the same
 // few dozen min/max/shuffle steps whatever the order. Every step is a constant shuffle within
@@ -148,7 +148,7 @@ HWY_INLINE void SortVectors(D d, const T* row, std::int64_t count, T drop, T* ou
 }
 
 /// Writes row[0, count) ascending, without the one entry equal to `drop` when `kept` is count - 1,
-/// to out[0, kept) when count <= 4 vectors of int32 and the vectors have at least 4 lanes;
+/// to out[0, kept) when count <= 64 (32 with 4 lanes) and the vectors have at least 4 lanes;
 /// returns false otherwise (nothing written). Reads up to a vector past `count`: the caller pads
 /// the row by hn::Lanes(ScalableTag<T>). Writes nothing past out[kept - 1].
 template <class T>
@@ -158,13 +158,16 @@ HWY_INLINE bool SortShortRowTo(const T* row, std::int64_t count, T drop, T* out,
   if constexpr (lanes < 4) {
     return false;
   } else {
-    if (count > 4 * lanes) return false;
+    constexpr std::int64_t most = lanes >= 16 ? 4 : 8;  // vectors: 64 ids (AVX2, AVX-512), 32 (SSE4)
+    if (count > most * lanes) return false;
     if (count <= lanes)
       SortVectors<1>(d, row, count, drop, out, kept);
     else if (count <= 2 * lanes)
       SortVectors<2>(d, row, count, drop, out, kept);
-    else
+    else if (count <= 4 * lanes)
       SortVectors<4>(d, row, count, drop, out, kept);
+    else if constexpr (most == 8)
+      SortVectors<8>(d, row, count, drop, out, kept);
     return true;
   }
 }

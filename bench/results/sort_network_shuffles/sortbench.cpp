@@ -15,8 +15,14 @@ int main(int argc, char** argv) {
   double best = 1e9;
   for (int rep = 0; rep < 7; ++rep) {
     auto t0 = std::chrono::steady_clock::now();
-    for (int r = 0; r < rows; ++r)
-      horizon::detail::HWY_NAMESPACE::SortShortRowTo(in.data() + size_t(r) * len, len, -1, out.data() + size_t(r) * len, len);
+    for (int r = 0; r < rows; ++r) {
+      const int* row = in.data() + size_t(r) * len;
+      int* place = out.data() + size_t(r) * len;
+      if (horizon::detail::HWY_NAMESPACE::SortShortRowTo(row, len, -1, place, len)) continue;
+      std::copy(row, row + len, place);  // longer rows: the insertion sort they took before
+      for (int i = 1; i < len; ++i)
+        for (int j = i; j > 0 && place[j - 1] > place[j]; --j) std::swap(place[j - 1], place[j]);
+    }
     best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   }
   for (int r = 0; r < rows; ++r) {
