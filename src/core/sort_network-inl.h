@@ -2,10 +2,10 @@
 // with SSE4), padded with the largest id. An insertion sort of the 18-id rows
 // of m = 1.5 mispredicts a branch per move when ids arrive in random order (AMD Zen 5: 350 ns
 // a row; sorting took 60 % of the fill pass of a shuffled lattice); the network takes the same
-// few dozen min/max/shuffle steps whatever the order. Every step is a constant shuffle within
-// 128-bit blocks or a block swap, and a blend with an immediate: with a general lane permute
-// (vpermd) and variable blends, rows of 17-32 ids took 79 ns on AMD Zen 3 (AVX2), 34.5 ns now;
-// up to 16 ids 28 ns, 13 ns now.
+// few dozen min/max/shuffle steps whatever the order, unrolled at compile time. With AVX2 every
+// step is a constant shuffle within 128-bit blocks or a block swap and a blend with an
+// immediate: with a general lane permute (vpermd) and variable blends, rows of 17-32 ids took
+// 79 ns on AMD Zen 3, 35 ns now; up to 16 ids 28 ns, 15 ns now.
 // Highway per-target header (included once per instruction set by foreach_target).
 #if defined(HORIZON_SORT_NETWORK_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef HORIZON_SORT_NETWORK_INL_H_
@@ -24,13 +24,14 @@ namespace horizon::detail {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-/// Lane i of `x` moved to lane i ^ Xor (Xor < lanes), by shuffles within 128-bit blocks and
-/// block swaps: a general lane permute (vpermd) is two uops with a long latency on AMD Zen 2/3.
+/// Lane i of `x` moved to lane i ^ Xor (Xor < lanes). Up to 8 lanes (SSE4, AVX2) by shuffles
+/// within 128-bit blocks and a block swap: a general lane permute (vpermd) is two uops with a
+/// long latency on AMD Zen 2/3. With AVX-512 by the one permute, which measured faster there
+/// (Intel Xeon host: rows of 17-32 ids 31-34 ns, 38-41 with shuffles and block swaps).
 template <int Xor, class D, class V>
 HWY_INLINE V PartnerLanes(D d, V x) {
 #if HWY_TARGET != HWY_SCALAR  // (which has none of these; its rows are not sorted here)
-  if constexpr (hn::MaxLanes(d) <= 16) {
-    if constexpr ((Xor & 8) != 0) x = hn::ConcatLowerUpper(d, x, x);
+  if constexpr (hn::MaxLanes(d) <= 8) {
     if constexpr ((Xor & 4) != 0) x = hn::SwapAdjacentBlocks(x);
     if constexpr ((Xor & 3) == 1) return hn::Shuffle2301(x);
     if constexpr ((Xor & 3) == 2) return hn::Shuffle1032(x);
@@ -41,18 +42,18 @@ HWY_INLINE V PartnerLanes(D d, V x) {
   return hn::TableLookupLanes(x, hn::IndicesFromVec(d, hn::Xor(hn::Iota(d, 0), hn::Set(d, Xor))));
 }
 
-/// The lanes with bit J set from `upper`, the others from `lower`, by blends with an immediate.
+/// The lanes with bit J set from `upper`, the others from `lower`: up to 8 lanes by blends with
+/// an immediate, with AVX-512 by a mask (as measured fastest, see PartnerLanes).
 template <int J, class D, class V>
 HWY_INLINE V BlendUpperLanes(D d, V upper, V lower) {
 #if HWY_TARGET != HWY_SCALAR
-  if constexpr (hn::MaxLanes(d) <= 16) {
+  if constexpr (hn::MaxLanes(d) <= 8) {
     if constexpr (J == 1) return hn::OddEven(upper, lower);
     if constexpr (J == 2) {
       const hn::Repartition<std::uint64_t, D> d64;
       return hn::BitCast(d, hn::OddEven(hn::BitCast(d64, upper), hn::BitCast(d64, lower)));
     }
     if constexpr (J == 4) return hn::OddEvenBlocks(upper, lower);
-    if constexpr (J == 8) return hn::ConcatUpperLower(d, upper, lower);
   }
 #endif
   return hn::IfThenElse(hn::Ne(hn::And(hn::Iota(d, 0), hn::Set(d, J)), hn::Zero(d)), upper, lower);
