@@ -18,9 +18,10 @@
 namespace horizon::testing {
 namespace {
 
-TEST(SimdTargets, EveryTargetThisCpuRunsMatchesBruteForce) {
-  // The oracle's list depends on neither the target, k nor the row order: computed once each.
-  std::map<std::tuple<int, std::string, Metric, bool>, NeighborList> oracle;
+/// Runs `test(target)` with each SIMD target this CPU runs and this build compiled forced;
+/// returns how many ran.
+template <class Test>
+int for_each_target(Test test) {
   const std::int64_t supported = hwy::SupportedTargets();
   int targets_run = 0;
   for (const std::int64_t target : {HWY_AVX3_DL, HWY_AVX3, HWY_AVX2, HWY_SSE4, HWY_SSSE3, HWY_EMU128}) {
@@ -28,6 +29,16 @@ TEST(SimdTargets, EveryTargetThisCpuRunsMatchesBruteForce) {
     hwy::SetSupportedTargetsForTest(target);
     if (std::string(cpu_simd_target()) != hwy::TargetName(target)) continue;  // not compiled in
     ++targets_run;
+    test(target);
+  }
+  hwy::SetSupportedTargetsForTest(0);
+  return targets_run;
+}
+
+TEST(SimdTargets, EveryTargetThisCpuRunsMatchesBruteForce) {
+  // The oracle's list depends on neither the target, k nor the row order: computed once each.
+  std::map<std::tuple<int, std::string, Metric, bool>, NeighborList> oracle;
+  const int targets_run = for_each_target([&](std::int64_t target) {
     for (int dims : {2, 3})
       for (const Dataset& data : datasets(dims))
         for (Metric metric : {Metric::euclidean, Metric::manhattan, Metric::chebyshev})
@@ -54,8 +65,7 @@ TEST(SimdTargets, EveryTargetThisCpuRunsMatchesBruteForce) {
                   }
                 }
               }
-  }
-  hwy::SetSupportedTargetsForTest(0);
+  });
 #if defined(HORIZON_NATIVE_BUILD)
   EXPECT_GE(targets_run, 1);  // -march=native compiles only this CPU's best target
 #else
@@ -64,7 +74,7 @@ TEST(SimdTargets, EveryTargetThisCpuRunsMatchesBruteForce) {
 }
 
 // Rows of every length from 0 to 80 ids, arriving in random id order: every size of the
-// in-register sorting network (1, 2 and 4 vectors of each target), its padding, and the longer
+// in-register sorting network (1, 2, 4 and 8 vectors), its padding, and the longer
 // rows sorted otherwise. Group g is g + 1 points at one spot, far from the others.
 TEST(SimdTargets, RowsOfEveryLengthAreSortedOnEveryTarget) {
   std::vector<double> xyz;
@@ -78,11 +88,7 @@ TEST(SimdTargets, RowsOfEveryLengthAreSortedOnEveryTarget) {
   for (std::size_t i = 0; i < n; ++i)
     for (int a = 0; a < 3; ++a) points[3 * shuffled[i] + a] = xyz[3 * i + a];
   const PointView view(points.data(), n, 3);
-  const std::int64_t supported = hwy::SupportedTargets();
-  for (const std::int64_t target : {HWY_AVX3_DL, HWY_AVX3, HWY_AVX2, HWY_SSE4, HWY_SSSE3, HWY_EMU128}) {
-    if (!(supported & target)) continue;
-    hwy::SetSupportedTargetsForTest(target);
-    if (std::string(cpu_simd_target()) != hwy::TargetName(target)) continue;
+  for_each_target([&](std::int64_t target) {
     for (Backend backend : {Backend::serial, Backend::openmp})
       for (bool half : {false, true}) {
         SearchOptions options;
@@ -94,8 +100,7 @@ TEST(SimdTargets, RowsOfEveryLengthAreSortedOnEveryTarget) {
         EXPECT_EQ(list.offsets(), expected.offsets()) << hwy::TargetName(target);
         EXPECT_EQ(list.indices(), expected.indices()) << hwy::TargetName(target) << (half ? " half" : "");
       }
-  }
-  hwy::SetSupportedTargetsForTest(0);
+  });
 }
 
 }  // namespace
