@@ -1,3 +1,7 @@
+// In-process A/B of select_entries (VerletList::refresh's selection), as run for this folder's
+// README: "select_entries.hpp" was the one-pass variant (not committed), the second include
+// main's version (7eb38e9) renamed into namespace old_detail. Built with the Release flags
+// against libhorizon.a: g++ -O3 -ffp-contract=off -fopenmp -std=c++20 -Iinclude -Isrc/core -Isrc.
 #include <chrono>
 #include <cstdio>
 #include <random>

@@ -2,7 +2,8 @@
 # GPU A/B on the GPU machine: builds this tree and an older one (unpacked under .deps/old-src)
 # with CUDA, runs the GPU suite (GPU required) on this one, horizon_gpu_bench of both
 # alternately, then per-kernel durations (Nsight Compute) of both at lattice 200.
-# Usage: [SIZES=100,200,400] [ROUNDS=2] bash bench/gpu/device_gpu_ab.sh  (writes under $OUT)
+# Usage (repository root, old tree in .deps/old-src, carry [".deps"]):
+#   [SIZES=100,200,400] [ROUNDS=2] bash bench/gpu/device_gpu_ab.sh  (writes under $OUT)
 source bench/gpu/device_build.sh
 BUILD=.deps/old-src/build-gpu
 cmake -S .deps/old-src -B $BUILD -DCMAKE_BUILD_TYPE=Release -DHORIZON_CUDA=on -DHORIZON_PYTHON=off -DHORIZON_MPI=OFF \
