@@ -14,6 +14,7 @@
 #include "datasets.hpp"
 #include "horizon/oracle.hpp"
 #include "horizon/search.hpp"
+#include "horizon/verlet_list.hpp"
 
 namespace horizon::testing {
 namespace {
@@ -71,6 +72,23 @@ TEST(SimdTargets, EveryTargetThisCpuRunsMatchesBruteForce) {
 #else
   EXPECT_GE(targets_run, 2) << "a portable build dispatches to this CPU's best target and fallbacks";
 #endif
+}
+
+// The Verlet refresh tests its stored candidates with its own kernel (four or two candidates
+// per step and a scalar tail, bits in 64-entry words): on every target it must give the oracle's
+// list, ties on the horizon and rows longer than 64 candidates included.
+TEST(SimdTargets, VerletRefreshMatchesBruteForceOnEveryTarget) {
+  for_each_target([&](std::int64_t target) {
+    for (int dims : {2, 3})
+      for (const Dataset& data : datasets(dims))
+        for (Metric metric : {Metric::euclidean, Metric::manhattan, Metric::chebyshev})
+          for (bool half : {false, true}) {
+            const SearchOptions options = options_for(data, metric, 1, half);
+            const VerletList verlet(data.points.view(), options, 0.3 * data.horizon);
+            EXPECT_EQ(verlet.refresh(data.points.view(), 1), brute_force(data.points.view(), options))
+                << hwy::TargetName(target) << " " << data.name << " " << metric_name(metric) << (half ? " half" : "");
+          }
+  });
 }
 
 // Rows of every length from 0 to 80 ids, arriving in random id order: every size of the

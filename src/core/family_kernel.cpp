@@ -14,72 +14,17 @@
 #include <vector>
 
 #include "core/family_search.hpp"
+#include "core/metric-inl.h"
+#include "core/store_selected-inl.h"
 #include "core/sort_network-inl.h"
 #include "core/sorted_stencil.hpp"
 #include "horizon/cell_index.hpp"
 
-#ifndef HORIZON_SHUFFLE_TABLE
-#define HORIZON_SHUFFLE_TABLE
-namespace horizon::detail {
-/// Byte shuffles that move the 32-bit lanes selected by a mask of up to 4 bits to the front. A
-/// static table: highway 1.0's own Compress for these vectors builds its table on the stack at
-/// every call (GCC), and loading it back stalls on store forwarding (measured: AMD Zen 3, fill
-/// pass of lattice 100, m = 3.015, 2.7 s with it).
-struct alignas(16) LaneShuffles {
-  std::uint8_t bytes[16][16];
-};
-constexpr LaneShuffles make_lane_shuffles() {
-  LaneShuffles table{};
-  for (int mask = 0; mask < 16; ++mask) {
-    int out = 0;
-    for (int lane = 0; lane < 4; ++lane)
-      if (mask >> lane & 1) {
-        for (int b = 0; b < 4; ++b) table.bytes[mask][4 * out + b] = static_cast<std::uint8_t>(4 * lane + b);
-        ++out;
-      }
-    for (; out < 4; ++out)
-      for (int b = 0; b < 4; ++b) table.bytes[mask][4 * out + b] = static_cast<std::uint8_t>(4 * out + b);
-  }
-  return table;
-}
-inline constexpr LaneShuffles lane_shuffles = make_lane_shuffles();
-}  // namespace horizon::detail
-#endif
 
 HWY_BEFORE_NAMESPACE();
 namespace horizon::detail {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
-
-template <Metric M, int D, class V>
-HWY_INLINE V accumulate(V dx, V dy, V dz) {
-  if constexpr (M == Metric::euclidean) {
-    const V xy = hn::Add(hn::Mul(dx, dx), hn::Mul(dy, dy));
-    return D == 3 ? hn::Add(xy, hn::Mul(dz, dz)) : xy;
-  } else if constexpr (M == Metric::manhattan) {
-    const V xy = hn::Add(hn::Abs(dx), hn::Abs(dy));
-    return D == 3 ? hn::Add(xy, hn::Abs(dz)) : xy;
-  } else {
-    const V xy = hn::Max(hn::Abs(dx), hn::Abs(dy));
-    return D == 3 ? hn::Max(xy, hn::Abs(dz)) : xy;
-  }
-}
-
-/// Writes the lanes of `ids` selected by `bits` to `out`, in lane order (and junk after them, up
-/// to a vector). AVX-512 compresses in a register; narrower vectors shuffle by the table above.
-template <class DI, class VI>
-HWY_INLINE void StoreSelected(DI di, VI ids, unsigned bits, point_id* out) {
-  if constexpr (hn::MaxLanes(di) == 1) {
-    *out = hn::GetLane(ids);
-  } else if constexpr (hn::MaxLanes(di) <= 4) {
-    const hn::Repartition<std::uint8_t, DI> du8;
-    const auto shuffle = hn::Load(du8, lane_shuffles.bytes[bits]);
-    hn::StoreU(hn::BitCast(di, hn::TableLookupBytes(hn::BitCast(du8, ids), shuffle)), di, out);
-  } else {
-    const std::uint8_t bytes[8] = {static_cast<std::uint8_t>(bits), static_cast<std::uint8_t>(bits >> 8)};
-    hn::StoreU(hn::Compress(ids, hn::LoadMaskBits(di, bytes)), di, out);
-  }
-}
 
 /// Which candidates' ids a family excludes: those above `self` (half lists), `self` only, or
 /// none (full lists whose caller removes `self` afterwards, which saves a compare per vector).

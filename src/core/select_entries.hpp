@@ -6,17 +6,20 @@
 #include <cstring>
 
 #include "parallel_scan.hpp"
+#include "select_kernel.hpp"
 #include "horizon/neighbor_list.hpp"
 
 namespace horizon::detail {
 
-/// The entries j of each row i with keep(i, j). Each entry is tested once and its verdict kept
-/// as a bit, each row's bits from a word of its own (about 1/32 of the list), then the kept
-/// entries are written straight to their place: a temporary list moved afterwards cost more,
-/// and testing twice read each candidate's point twice (measured: Verlet refresh of lattice
-/// 100, m = 3.015).
-template <class Keep>
-NeighborList select_entries(const NeighborList& list, Keep keep, int threads) {
+/// The entries of each row that `mark(i, ids, count, bits)` marks: it sets bit e % 64 of
+/// bits[e / 64] for each id ids[e] of row i it keeps (count of them) and returns how many.
+/// The verdicts are kept as bits, each row's from a word of its own (about 1/32 of the list),
+/// then the kept entries are written straight to their place: a temporary list moved
+/// afterwards cost more, and testing twice read each candidate's point twice; so did a single
+/// pass writing each thread's rows where they start and moving them down (measured: Verlet
+/// refresh of lattice 100, m = 3.015).
+template <class Mark>
+NeighborList select_marked(const NeighborList& list, Mark mark, int threads) {
   const auto n = static_cast<std::int64_t>(list.size());
   const std::int64_t* from = list.offsets().data();
   // first_word[i]: where row i's bits start (a row of s entries takes ceil(s / 64) words).
@@ -32,16 +35,8 @@ NeighborList select_entries(const NeighborList& list, Keep keep, int threads) {
 #pragma omp parallel for schedule(dynamic, 1024) num_threads(threads) if (threads > 1)
   for (std::int64_t i = 0; i < n; ++i) {
     const auto row = list.row(static_cast<std::size_t>(i));
-    std::int64_t count = 0;
-    std::uint64_t* bits = kept.data() + first_word[i];
-    for (std::size_t e = 0; e < row.size(); e += 64) {
-      const std::size_t end = std::min(row.size(), e + 64);
-      std::uint64_t word = 0;
-      for (std::size_t f = e; f < end; ++f) word |= std::uint64_t{keep(static_cast<std::size_t>(i), row[f])} << (f - e);
-      bits[e / 64] = word;
-      count += std::popcount(word);
-    }
-    offsets[i + 1] = count;
+    offsets[i + 1] = mark(static_cast<std::size_t>(i), row.data(), static_cast<std::int64_t>(row.size()),
+                          kept.data() + first_word[i]);
   }
   inclusive_scan(offsets.data(), offsets.size(), threads);
   Buffer<point_id> indices(static_cast<std::size_t>(offsets.back()));
@@ -52,17 +47,30 @@ NeighborList select_entries(const NeighborList& list, Keep keep, int threads) {
     const std::int64_t size = offsets[i + 1] - offsets[i];
     if (size == static_cast<std::int64_t>(row.size())) {  // all kept: no bits read
       if (!row.empty()) std::memcpy(out, row.data(), row.size() * sizeof(point_id));
-      continue;
-    }
-    // Branch-free: every id is written, and the place advances past the kept ones; the loop
-    // stops at the last kept one, so nothing is written past the row.
-    const std::uint64_t* bits = kept.data() + first_word[i];
-    for (std::int64_t e = 0, written = 0; written < size; ++e) {
-      out[written] = row[static_cast<std::size_t>(e)];
-      written += static_cast<std::int64_t>(bits[e / 64] >> (e % 64) & 1);
+    } else {
+      write_marked(row.data(), static_cast<std::int64_t>(row.size()), kept.data() + first_word[i], size, out);
     }
   }
   return NeighborList(std::move(offsets), std::move(indices), list.is_half());
+}
+
+/// The entries j of each row i with keep(i, j), as select_marked() with a test per entry.
+template <class Keep>
+NeighborList select_entries(const NeighborList& list, Keep keep, int threads) {
+  return select_marked(
+      list,
+      [&](std::size_t i, const point_id* ids, std::int64_t count, std::uint64_t* bits) {
+        std::int64_t marked = 0;
+        for (std::int64_t e = 0; e < count; e += 64) {
+          const std::int64_t end = std::min(count, e + 64);
+          std::uint64_t word = 0;
+          for (std::int64_t f = e; f < end; ++f) word |= std::uint64_t{keep(i, ids[f])} << (f - e);
+          bits[e / 64] = word;
+          marked += std::popcount(word);
+        }
+        return marked;
+      },
+      threads);
 }
 
 /// Moves data[from, from + size) down to data[to, ...) (to <= from). In parallel, in waves no

@@ -16,24 +16,16 @@ namespace {
 int resolve(int threads) { return threads > 0 ? threads : omp_get_max_threads(); }
 
 /// The candidates still within the horizon, compared as the search compares them (row point
-/// minus candidate, (dx*dx + dy*dy) + dz*dz or its l1/linf forms, against the threshold).
-template <Metric M, int D>
-NeighborList refresh_with(const NeighborList& candidates, const double* xyz, double horizon, int threads) {
-  const double limit = metric_threshold(M, horizon);
-  return detail::select_entries(
+/// minus candidate, metric_accumulate() against the threshold).
+NeighborList refresh_from(const NeighborList& candidates, const double* xyz, int dims, Metric metric, double horizon,
+                          int threads) {
+  const double limit = metric_threshold(metric, horizon);
+  return detail::select_marked(
       candidates,
-      [&](std::size_t i, point_id j) {
-        const double* a = xyz + D * i;
-        const double* b = xyz + D * static_cast<std::size_t>(j);
-        return metric_accumulate<M>(a[0] - b[0], a[1] - b[1], D == 3 ? a[2] - b[2] : 0.0) < limit;
+      [&](std::size_t i, const point_id* ids, std::int64_t count, std::uint64_t* bits) {
+        return detail::mark_within(metric, dims, xyz + dims * i, ids, count, xyz, limit, bits);
       },
       threads);
-}
-
-template <Metric M>
-NeighborList refresh_in(const NeighborList& candidates, const double* xyz, int dims, double horizon, int threads) {
-  return dims == 3 ? refresh_with<M, 3>(candidates, xyz, horizon, threads)
-                   : refresh_with<M, 2>(candidates, xyz, horizon, threads);
 }
 
 /// Whether a point of `now` is `limit` or farther (in the metric) from where it was `then`.
@@ -95,13 +87,7 @@ NeighborList VerletList::refresh(PointView points, int threads) const {
     promoted = to_point_set(points);
     xyz = promoted.xyz.data();
   }
-  const double h = options_.horizon;
-  threads = resolve(threads);
-  switch (options_.metric) {
-    case Metric::manhattan: return refresh_in<Metric::manhattan>(candidates_, xyz, built_at_.dims, h, threads);
-    case Metric::chebyshev: return refresh_in<Metric::chebyshev>(candidates_, xyz, built_at_.dims, h, threads);
-    default: return refresh_in<Metric::euclidean>(candidates_, xyz, built_at_.dims, h, threads);
-  }
+  return refresh_from(candidates_, xyz, built_at_.dims, options_.metric, options_.horizon, resolve(threads));
 }
 
 }  // namespace horizon
