@@ -267,7 +267,7 @@ TEST(Cuda, DeviceVerletRefreshEqualsAFreshSearchWithinHalfTheSkin) {
   for (int dims : {2, 3})
     for (Metric metric : {Metric::euclidean, Metric::manhattan, Metric::chebyshev})
       for (bool half : {false, true})
-      for (double scale : {1.0, 0.2}) {  // long rows (a warp each) and short ones (8 lanes each)
+      for (double scale : {1.0, 0.5, 0.2}) {  // long rows (a warp each), middle (16 lanes), short (8)
         const PointSet points = clustered_cloud(20000, 6, 0.8, dims, 4);
         const std::size_t bytes = points.xyz.size() * sizeof(double);
         double* device_xyz = nullptr;

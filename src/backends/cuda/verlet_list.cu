@@ -1,10 +1,11 @@
 // The device Verlet list: candidates from search_device at horizon + skin, then per refresh a
-// count pass, a scan and a fill pass over them, a group of 8-32 lanes per row (its lanes read
-// consecutive candidates, so the loads are coalesced and the kept ids are written in order by a
-// ballot).
+// pass that tests them and keeps its verdicts as bits, a scan of the row sizes and a pass that
+// writes the marked ids; a group of 8-32 lanes per row (its lanes read consecutive candidates, so
+// the loads are coalesced and the kept ids are written in order by a ballot).
 #include <cub/device/device_scan.cuh>
 
 #include <cmath>
+#include <type_traits>
 
 #include "device_memory.hpp"
 #include "horizon/device_verlet_list.hpp"
@@ -27,34 +28,61 @@ __global__ void find_moved(const double* now, const double* then, std::size_t co
   if (!(metric_accumulate<M>(a[0] - b[0], a[1] - b[1], D == 3 ? a[2] - b[2] : 0.0) < threshold)) *moved = 1;
 }
 
-/// Row i's candidates within the horizon, tested as the search tests them (row point minus
-/// candidate), by a group of G lanes of a warp. Count: sizes[i]; Fill: their ids, in candidate
-/// order, from offsets[i].
-template <Metric M, int D, int G, bool Fill>
-__global__ void refresh_rows(const std::int64_t* candidate_offsets, const point_id* candidates, const double* xyz,
-                             std::size_t count, double limit, std::int64_t* sizes, const std::int64_t* offsets,
-                             point_id* out) {
+/// The verdicts of one step of a group of G lanes over a row's candidates, one bit a lane.
+template <int G>
+using Marks = std::conditional_t<G == 8, std::uint8_t, std::conditional_t<G == 16, std::uint16_t, std::uint32_t>>;
+
+/// Where row i's marks start: a row of s candidates takes ceil(s / G) <= s / G + 1 steps, so
+/// rows laid out from offset / G + i never overlap, and no scan is needed.
+template <int G>
+__device__ std::size_t first_mark(std::int64_t candidate_offset, std::size_t i) {
+  return static_cast<std::size_t>(candidate_offset / G) + i;
+}
+
+/// Count: row i's candidates within the horizon, tested as the search tests them (row point
+/// minus candidate) by a group of G lanes of a warp; sizes[i] = how many, and each step's
+/// verdicts kept in `marks`.
+template <Metric M, int D, int G>
+__global__ void mark_rows(const std::int64_t* candidate_offsets, const point_id* candidates, const double* xyz,
+                          std::size_t count, double limit, std::int64_t* sizes, Marks<G>* marks) {
   const std::size_t i = (blockIdx.x * static_cast<std::size_t>(blockDim.x) + threadIdx.x) / G;
   const unsigned lane = threadIdx.x % G, base = threadIdx.x % 32 - lane;
   const unsigned group = (G == 32 ? 0xffffffffu : (1u << G) - 1) << base;
   if (i >= count) return;  // the whole group
   const double* p = xyz + D * i;
   const std::int64_t begin = candidate_offsets[i], end = candidate_offsets[i + 1];
-  std::int64_t at = Fill ? offsets[i] : 0;
+  Marks<G>* row_marks = marks + first_mark<G>(begin, i);
+  std::int64_t kept = 0;
   for (std::int64_t first = begin; first < end; first += G) {
     const std::int64_t k = first + lane;
     bool keep = false;
-    point_id j = 0;
     if (k < end) {
-      j = candidates[k];
-      const double* q = xyz + D * static_cast<std::size_t>(j);
+      const double* q = xyz + D * static_cast<std::size_t>(candidates[k]);
       keep = metric_accumulate<M>(p[0] - q[0], p[1] - q[1], D == 3 ? p[2] - q[2] : 0.0) < limit;
     }
     const unsigned ballot = (__ballot_sync(group, keep) & group) >> base;
-    if (Fill && keep) out[at + __popc(ballot & ((1u << lane) - 1))] = j;
-    at += __popc(ballot);
+    if (lane == 0) row_marks[(first - begin) / G] = static_cast<Marks<G>>(ballot);
+    kept += __popc(ballot);
   }
-  if (!Fill && lane == 0) sizes[i] = at;
+  if (lane == 0) sizes[i] = kept;
+}
+
+/// Fill: row i's marked candidates, in candidate order, from offsets[i]: the marks are read, not
+/// the points again.
+template <int G>
+__global__ void write_marked_rows(const std::int64_t* candidate_offsets, const point_id* candidates, std::size_t count,
+                                  const Marks<G>* marks, const std::int64_t* offsets, point_id* out) {
+  const std::size_t i = (blockIdx.x * static_cast<std::size_t>(blockDim.x) + threadIdx.x) / G;
+  const unsigned lane = threadIdx.x % G;
+  if (i >= count) return;
+  const std::int64_t begin = candidate_offsets[i], end = candidate_offsets[i + 1];
+  const Marks<G>* row_marks = marks + first_mark<G>(begin, i);
+  std::int64_t at = offsets[i];
+  for (std::int64_t first = begin; first < end; first += G) {
+    const unsigned marked = row_marks[(first - begin) / G];
+    if (marked >> lane & 1) out[at + __popc(marked & ((1u << lane) - 1))] = candidates[first + lane];
+    at += __popc(marked);
+  }
 }
 
 unsigned blocks_for(std::size_t threads) {
@@ -89,8 +117,9 @@ std::int64_t refresh_into(const DeviceNeighborList& candidates, const double* xy
   offsets = DeviceArray<std::int64_t>(count + 1, meter);
   HORIZON_CUDA_CHECK(cudaMemsetAsync(offsets.get(), 0, sizeof(std::int64_t), stream));
   if (count == 0) return 0;
-  refresh_rows<M, D, G, false><<<blocks, verlet_block, 0, stream>>>(candidates.offsets(), candidates.indices(), xyz,
-                                                                    count, limit, sizes.get(), nullptr, nullptr);
+  DeviceArray<Marks<G>> marks(static_cast<std::size_t>(candidates.total()) / G + count, meter);
+  mark_rows<M, D, G><<<blocks, verlet_block, 0, stream>>>(candidates.offsets(), candidates.indices(), xyz, count, limit,
+                                                          sizes.get(), marks.get());
   HORIZON_CUDA_CHECK(cudaGetLastError());
   std::size_t temp_bytes = 0;
   HORIZON_CUDA_CHECK(cub::DeviceScan::InclusiveSum(nullptr, temp_bytes, sizes.get(), offsets.get() + 1, count, stream));
@@ -101,8 +130,8 @@ std::int64_t refresh_into(const DeviceNeighborList& candidates, const double* xy
   HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
   ids = DeviceArray<point_id>(static_cast<std::size_t>(total), meter);
   if (total > 0)
-    refresh_rows<M, D, G, true><<<blocks, verlet_block, 0, stream>>>(candidates.offsets(), candidates.indices(), xyz,
-                                                                      count, limit, nullptr, offsets.get(), ids.get());
+    write_marked_rows<G><<<blocks, verlet_block, 0, stream>>>(candidates.offsets(), candidates.indices(), count,
+                                                              marks.get(), offsets.get(), ids.get());
   HORIZON_CUDA_CHECK(cudaGetLastError());
   return total;
 }

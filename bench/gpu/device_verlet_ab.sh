@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Verlet A/B on the GPU machine: builds this tree and an older one (unpacked under .deps/old-src),
+# runs the GPU suite (GPU required) and compute-sanitizer on the device Verlet list of this one,
+# then horizon_device_verlet_bench and the 16-core host's horizon_verlet_bench of both, alternately.
+# Usage (repository root, old tree in .deps/old-src, carry [".deps"]):
+#   [ROUNDS=2] bash bench/gpu/device_verlet_ab.sh  (writes under $OUT)
+source bench/gpu/device_build.sh
+OLD=.deps/old-src/build-gpu
+cmake -S .deps/old-src -B $OLD -DCMAKE_BUILD_TYPE=Release -DHORIZON_CUDA=on -DHORIZON_PYTHON=off -DHORIZON_MPI=OFF \
+  -DCMAKE_PREFIX_PATH=/opt/deps/usr -DCMAKE_CUDA_ARCHITECTURES=90 > $OUT/configure_old.log 2>&1
+cmake --build $OLD -j "$(nproc)" --target horizon_device_verlet_bench horizon_verlet_bench 2>&1 | grep -E "error"
+(cd build-gpu && HORIZON_REQUIRE_GPU=1 ctest -j 16 -R "cuda|Cuda|Verlet|SimdTargets" > "$OUT/gpu_tests.txt" 2>&1)
+grep -E "tests passed|tests failed" "$OUT/gpu_tests.txt"; grep -E "\(Failed\)" "$OUT/gpu_tests.txt" | head
+for tool in memcheck racecheck initcheck; do
+  timeout 200 compute-sanitizer --tool $tool --error-exitcode 1 build-gpu/bin/horizon_tests \
+    --gtest_filter='Cuda.DeviceVerlet*' > "$OUT/$tool.txt" 2>&1
+  echo "$tool exit $?"; tail -1 "$OUT/$tool.txt"
+done
+for round in $(seq ${ROUNDS:-2}); do
+  for tree in new old; do
+    bin=build-gpu/bin; [ $tree = old ] && bin=$OLD/bin
+    $bin/horizon_device_verlet_bench --sizes 100 200 > $OUT/device_${tree}_$round.csv
+    $bin/horizon_verlet_bench --reps 5 > $OUT/cpu_${tree}_$round.csv
+  done
+done
+head -100 $OUT/device_*.csv $OUT/cpu_*.csv
