@@ -3,7 +3,7 @@
 # runs the GPU suite (GPU required) and compute-sanitizer on the device Verlet list of this one,
 # then horizon_device_verlet_bench and the 16-core host's horizon_verlet_bench of both, alternately.
 # Usage (repository root, old tree in .deps/old-src, carry [".deps"]):
-#   [ROUNDS=2] bash bench/gpu/device_verlet_ab.sh  (writes under $OUT)
+#   [ROUNDS=2] [SANITIZERS="memcheck racecheck initcheck"] bash bench/gpu/device_verlet_ab.sh  (writes under $OUT)
 source bench/gpu/device_build.sh
 OLD=.deps/old-src/build-gpu
 cmake -S .deps/old-src -B $OLD -DCMAKE_BUILD_TYPE=Release -DHORIZON_CUDA=on -DHORIZON_PYTHON=off -DHORIZON_MPI=OFF \
@@ -11,7 +11,7 @@ cmake -S .deps/old-src -B $OLD -DCMAKE_BUILD_TYPE=Release -DHORIZON_CUDA=on -DHO
 cmake --build $OLD -j "$(nproc)" --target horizon_device_verlet_bench horizon_verlet_bench 2>&1 | grep -E "error"
 (cd build-gpu && HORIZON_REQUIRE_GPU=1 ctest -j 16 -R "cuda|Cuda|Verlet|SimdTargets" > "$OUT/gpu_tests.txt" 2>&1)
 grep -E "tests passed|tests failed" "$OUT/gpu_tests.txt"; grep -E "\(Failed\)" "$OUT/gpu_tests.txt" | head
-for tool in memcheck racecheck initcheck; do
+for tool in ${SANITIZERS:-}; do
   timeout 200 compute-sanitizer --tool $tool --error-exitcode 1 build-gpu/bin/horizon_tests \
     --gtest_filter='Cuda.DeviceVerlet*' > "$OUT/$tool.txt" 2>&1
   echo "$tool exit $?"; tail -1 "$OUT/$tool.txt"
