@@ -79,8 +79,10 @@ __global__ void write_marked_rows(const std::int64_t* candidate_offsets, const p
   const Marks<G>* row_marks = marks + first_mark<G>(begin, i);
   std::int64_t at = offsets[i];
   for (std::int64_t first = begin; first < end; first += G) {
+    // Both loads issued at once: the id's waiting on the mark made the pass latency-bound.
+    const point_id j = first + lane < end ? candidates[first + lane] : 0;
     const unsigned marked = row_marks[(first - begin) / G];
-    if (marked >> lane & 1) out[at + __popc(marked & ((1u << lane) - 1))] = candidates[first + lane];
+    if (marked >> lane & 1) out[at + __popc(marked & ((1u << lane) - 1))] = j;
     at += __popc(marked);
   }
 }
