@@ -12,7 +12,7 @@ cmake --build $OLD -j "$(nproc)" --target horizon_device_verlet_bench horizon_ve
 (cd build-gpu && HORIZON_REQUIRE_GPU=1 ctest -j 16 -R "cuda|Cuda|Verlet|SimdTargets" > "$OUT/gpu_tests.txt" 2>&1)
 grep -E "tests passed|tests failed" "$OUT/gpu_tests.txt"; grep -E "\(Failed\)" "$OUT/gpu_tests.txt" | head
 for tool in ${SANITIZERS:-}; do
-  timeout 200 compute-sanitizer --tool $tool --error-exitcode 1 build-gpu/bin/horizon_tests \
+  timeout 100 compute-sanitizer --tool $tool --error-exitcode 1 build-gpu/bin/horizon_tests \
     --gtest_filter='Cuda.DeviceVerlet*' > "$OUT/$tool.txt" 2>&1
   echo "$tool exit $?"; tail -1 "$OUT/$tool.txt"
 done
