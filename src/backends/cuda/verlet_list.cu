@@ -1,11 +1,10 @@
 // The device Verlet list: candidates from search_device at horizon + skin, then per refresh a
-// pass that tests them and keeps its verdicts as bits, a scan of the row sizes and a pass that
-// writes the marked ids; a group of 8-32 lanes per row (its lanes read consecutive candidates, so
-// the loads are coalesced and the kept ids are written in order by a ballot).
+// count pass, a scan and a fill pass over them, a group of 8-32 lanes per row (its lanes read
+// consecutive candidates, so the loads are coalesced and the kept ids are written in order by a
+// ballot).
 #include <cub/device/device_scan.cuh>
 
 #include <cmath>
-#include <type_traits>
 
 #include "device_memory.hpp"
 #include "horizon/device_verlet_list.hpp"
@@ -28,63 +27,34 @@ __global__ void find_moved(const double* now, const double* then, std::size_t co
   if (!(metric_accumulate<M>(a[0] - b[0], a[1] - b[1], D == 3 ? a[2] - b[2] : 0.0) < threshold)) *moved = 1;
 }
 
-/// The verdicts of one step of a group of G lanes over a row's candidates, one bit a lane.
-template <int G>
-using Marks = std::conditional_t<G == 8, std::uint8_t, std::conditional_t<G == 16, std::uint16_t, std::uint32_t>>;
-
-/// Where row i's marks start: a row of s candidates takes ceil(s / G) <= s / G + 1 steps, so
-/// rows laid out from offset / G + i never overlap, and no scan is needed.
-template <int G>
-__device__ std::size_t first_mark(std::int64_t candidate_offset, std::size_t i) {
-  return static_cast<std::size_t>(candidate_offset / G) + i;
-}
-
-/// Count: row i's candidates within the horizon, tested as the search tests them (row point
-/// minus candidate) by a group of G lanes of a warp; sizes[i] = how many, and each step's
-/// verdicts kept in `marks`.
-template <Metric M, int D, int G>
-__global__ void mark_rows(const std::int64_t* candidate_offsets, const point_id* candidates, const double* xyz,
-                          std::size_t count, double limit, std::int64_t* sizes, Marks<G>* marks) {
+/// Row i's candidates within the horizon, tested as the search tests them (row point minus
+/// candidate), by a group of G lanes of a warp. Count: sizes[i]; Fill: their ids, in candidate
+/// order, from offsets[i].
+template <Metric M, int D, int G, bool Fill>
+__global__ void refresh_rows(const std::int64_t* candidate_offsets, const point_id* candidates, const double* xyz,
+                             std::size_t count, double limit, std::int64_t* sizes, const std::int64_t* offsets,
+                             point_id* out) {
   const std::size_t i = (blockIdx.x * static_cast<std::size_t>(blockDim.x) + threadIdx.x) / G;
   const unsigned lane = threadIdx.x % G, base = threadIdx.x % 32 - lane;
   const unsigned group = (G == 32 ? 0xffffffffu : (1u << G) - 1) << base;
   if (i >= count) return;  // the whole group
   const double* p = xyz + D * i;
   const std::int64_t begin = candidate_offsets[i], end = candidate_offsets[i + 1];
-  Marks<G>* row_marks = marks + first_mark<G>(begin, i);
-  std::int64_t kept = 0;
+  std::int64_t at = Fill ? offsets[i] : 0;
   for (std::int64_t first = begin; first < end; first += G) {
     const std::int64_t k = first + lane;
     bool keep = false;
+    point_id j = 0;
     if (k < end) {
-      const double* q = xyz + D * static_cast<std::size_t>(candidates[k]);
+      j = candidates[k];
+      const double* q = xyz + D * static_cast<std::size_t>(j);
       keep = metric_accumulate<M>(p[0] - q[0], p[1] - q[1], D == 3 ? p[2] - q[2] : 0.0) < limit;
     }
     const unsigned ballot = (__ballot_sync(group, keep) & group) >> base;
-    if (lane == 0) row_marks[(first - begin) / G] = static_cast<Marks<G>>(ballot);
-    kept += __popc(ballot);
+    if (Fill && keep) out[at + __popc(ballot & ((1u << lane) - 1))] = j;
+    at += __popc(ballot);
   }
-  if (lane == 0) sizes[i] = kept;
-}
-
-/// Fill: row i's marked candidates, in candidate order, from offsets[i]: the marks are read, not
-/// the points again.
-template <int G>
-__global__ void write_marked_rows(const std::int64_t* candidate_offsets, const point_id* candidates, std::size_t count,
-                                  const Marks<G>* marks, const std::int64_t* offsets, point_id* out) {
-  const std::size_t i = (blockIdx.x * static_cast<std::size_t>(blockDim.x) + threadIdx.x) / G;
-  const unsigned lane = threadIdx.x % G;
-  if (i >= count) return;
-  const std::int64_t begin = candidate_offsets[i], end = candidate_offsets[i + 1];
-  const Marks<G>* row_marks = marks + first_mark<G>(begin, i);
-  std::int64_t at = offsets[i];
-  for (std::int64_t first = begin; first < end; first += G) {
-    // Both loads issued at once: the id's waiting on the mark made the pass latency-bound.
-    const point_id j = first + lane < end ? candidates[first + lane] : 0;
-    const unsigned marked = row_marks[(first - begin) / G];
-    if (marked >> lane & 1) out[at + __popc(marked & ((1u << lane) - 1))] = j;
-    at += __popc(marked);
-  }
+  if (!Fill && lane == 0) sizes[i] = at;
 }
 
 unsigned blocks_for(std::size_t threads) {
@@ -109,7 +79,7 @@ bool moved_past(const double* now, const double* then, std::size_t count, double
 /// The refreshed list's offsets (count + 1) and ids, allocated from the meter's pool; G lanes
 /// per row.
 template <Metric M, int D, int G>
-std::int64_t refresh_into(const DeviceNeighborList& candidates, const double* xyz, double horizon, void* mark_space,
+std::int64_t refresh_into(const DeviceNeighborList& candidates, const double* xyz, double horizon,
                           cudaStream_t stream, MemoryMeter& meter, DeviceArray<std::int64_t>& offsets,
                           DeviceArray<point_id>& ids) {
   const std::size_t count = candidates.size();
@@ -119,9 +89,8 @@ std::int64_t refresh_into(const DeviceNeighborList& candidates, const double* xy
   offsets = DeviceArray<std::int64_t>(count + 1, meter);
   HORIZON_CUDA_CHECK(cudaMemsetAsync(offsets.get(), 0, sizeof(std::int64_t), stream));
   if (count == 0) return 0;
-  auto* marks = static_cast<Marks<G>*>(mark_space);
-  mark_rows<M, D, G><<<blocks, verlet_block, 0, stream>>>(candidates.offsets(), candidates.indices(), xyz, count, limit,
-                                                          sizes.get(), marks);
+  refresh_rows<M, D, G, false><<<blocks, verlet_block, 0, stream>>>(candidates.offsets(), candidates.indices(), xyz,
+                                                                    count, limit, sizes.get(), nullptr, nullptr);
   HORIZON_CUDA_CHECK(cudaGetLastError());
   std::size_t temp_bytes = 0;
   HORIZON_CUDA_CHECK(cub::DeviceScan::InclusiveSum(nullptr, temp_bytes, sizes.get(), offsets.get() + 1, count, stream));
@@ -132,8 +101,8 @@ std::int64_t refresh_into(const DeviceNeighborList& candidates, const double* xy
   HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
   ids = DeviceArray<point_id>(static_cast<std::size_t>(total), meter);
   if (total > 0)
-    write_marked_rows<G><<<blocks, verlet_block, 0, stream>>>(candidates.offsets(), candidates.indices(), count,
-                                                              marks, offsets.get(), ids.get());
+    refresh_rows<M, D, G, true><<<blocks, verlet_block, 0, stream>>>(candidates.offsets(), candidates.indices(), xyz,
+                                                                      count, limit, nullptr, offsets.get(), ids.get());
   HORIZON_CUDA_CHECK(cudaGetLastError());
   return total;
 }
@@ -159,26 +128,14 @@ struct MovedPast {
 
 /// Lanes per row from the mean row length: short rows would leave most of a warp idle
 /// (m = 1.5: 18 candidates a row).
-int lanes_per_row(const DeviceNeighborList& candidates) {
-  const double mean = candidates.size() ? static_cast<double>(candidates.total()) / candidates.size() : 0;
-  return mean <= 24 ? 8 : mean <= 64 ? 16 : 32;
-}
-
-/// The bytes of a refresh's marks (a bit per candidate, and at most a step more per row).
-std::size_t mark_bytes(const DeviceNeighborList& candidates) {
-  const auto lanes = static_cast<std::size_t>(lanes_per_row(candidates));
-  return (static_cast<std::size_t>(candidates.total()) / lanes + candidates.size()) * (lanes / 8);
-}
-
 template <Metric M, int D>
 struct RefreshInto {
   template <class... Args>
   std::int64_t operator()(const DeviceNeighborList& candidates, Args&... args) const {
-    switch (lanes_per_row(candidates)) {
-      case 8: return refresh_into<M, D, 8>(candidates, args...);
-      case 16: return refresh_into<M, D, 16>(candidates, args...);
-      default: return refresh_into<M, D, 32>(candidates, args...);
-    }
+    const double mean = candidates.size() ? static_cast<double>(candidates.total()) / candidates.size() : 0;
+    if (mean <= 24) return refresh_into<M, D, 8>(candidates, args...);
+    if (mean <= 64) return refresh_into<M, D, 16>(candidates, args...);
+    return refresh_into<M, D, 32>(candidates, args...);
   }
 };
 
@@ -187,8 +144,7 @@ struct RefreshInto {
 
 DeviceVerletList::DeviceVerletList(const double* xyz, std::size_t count, int dims, const SearchOptions& options,
                                    double skin, cuda_stream stream)
-    : options_(options), skin_(skin), dims_(dims), stream_(stream), built_at_(nullptr, DeviceNeighborList::Free{stream}),
-      marks_(nullptr, DeviceNeighborList::Free{stream}) {
+    : options_(options), skin_(skin), dims_(dims), stream_(stream), built_at_(nullptr, DeviceNeighborList::Free{stream}) {
   if (!(skin > 0) || !std::isfinite(skin)) throw Error("Verlet skin must be finite and > 0, not " + std::to_string(skin));
   if (detail::is_periodic(options))
     throw Error("a Verlet list in a periodic box is not supported: points wrapping across it break the skin bound");
@@ -200,11 +156,6 @@ DeviceVerletList::DeviceVerletList(const double* xyz, std::size_t count, int dim
   if (copy.size() > 0)
     HORIZON_CUDA_CHECK(cudaMemcpyAsync(copy.get(), xyz, copy.bytes(), cudaMemcpyDeviceToDevice, stream));
   built_at_.reset(copy.release());
-  // Allocated once, not per refresh: so allocated, they made a refresh of lattice 200 at
-  // m = 3.015 (H200) take 13.5-14.3 ms, against 11.3 ms before marks, though its kernels took
-  // 9.5 ms against 11.2.
-  detail::DeviceArray<unsigned char> marks(detail::mark_bytes(candidates_), meter);
-  marks_.reset(marks.release());
 }
 
 bool DeviceVerletList::needs_rebuild(const double* xyz) const {
@@ -223,7 +174,7 @@ DeviceNeighborList DeviceVerletList::refresh(const double* xyz) const {
   list.points_ = candidates_.size();
   list.stream_ = stream_;
   list.total_ = detail::dispatch<detail::RefreshInto>(options_.metric, dims_, candidates_, xyz, options_.horizon,
-                                                      static_cast<void*>(marks_.get()), stream_, meter, offsets, ids);
+                                                      stream_, meter, offsets, ids);
   const DeviceNeighborList::Free free_on_stream{stream_};
   list.offsets_ = {offsets.release(), free_on_stream};
   if (ids.size() > 0) list.indices_ = {ids.release(), free_on_stream};
