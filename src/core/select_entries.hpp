@@ -15,9 +15,9 @@ namespace horizon::detail {
 /// bits[e / 64] for each id ids[e] of row i it keeps (count of them) and returns how many.
 /// The verdicts are kept as bits, each row's from a word of its own (about 1/32 of the list),
 /// then the kept entries are written straight to their place: a temporary list moved
-/// afterwards cost more, and testing twice read each candidate's point twice; so did a single
-/// pass writing each thread's rows where they start and moving them down (measured: Verlet
-/// refresh of lattice 100, m = 3.015).
+/// afterwards cost more, testing twice read each candidate's point twice, and a single pass
+/// writing each thread's rows where they start, then moving them down, was no faster
+/// (measured: Verlet refresh of lattice 100, m = 3.015).
 template <class Mark>
 NeighborList select_marked(const NeighborList& list, Mark mark, int threads) {
   const auto n = static_cast<std::int64_t>(list.size());

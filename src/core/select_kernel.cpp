@@ -1,8 +1,9 @@
 // mark_within() and write_marked() (select_kernel.hpp) for each instruction set. A candidate's
 // coordinates lie wherever its id puts them, so the test loads them per candidate; it puts four
 // candidates' (x, y) pairs into two 256-bit registers and unpacks them into x and y lanes (and z
-// from two halves): half the instructions of the scalar test, which was issue-bound (Verlet
-// refresh of lattice 100, m = 3.015, AMD Zen 3: 0.19 s scalar, 0.10 s so; AVX2 gathers 0.26 s).
+// from two halves): half the instructions of the scalar test, which was issue-bound (the test
+// of a Verlet refresh of lattice 100, m = 3.015, one AMD Zen 3 core: 0.18-0.20 s scalar, 0.10 s
+// so; with AVX2 gathers 0.26 s).
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "core/select_kernel.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
