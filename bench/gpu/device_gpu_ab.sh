@@ -5,21 +5,18 @@
 # Usage (repository root, old tree in .deps/old-src, carry [".deps"]):
 #   [SIZES=100,200,400] [ROUNDS=2] bash bench/gpu/device_gpu_ab.sh  (writes under $OUT)
 source bench/gpu/device_build.sh
-BUILD=.deps/old-src/build-gpu
-cmake -S .deps/old-src -B $BUILD -DCMAKE_BUILD_TYPE=Release -DHORIZON_CUDA=on -DHORIZON_PYTHON=off -DHORIZON_MPI=OFF \
-  -DCMAKE_PREFIX_PATH=/opt/deps/usr -DCMAKE_CUDA_ARCHITECTURES=90 > $OUT/configure_old.log 2>&1
-cmake --build $BUILD -j "$(nproc)" --target horizon_gpu_bench 2>&1 | grep -E "error" 
+source bench/gpu/device_build_old.sh horizon_gpu_bench
 (cd build-gpu && HORIZON_REQUIRE_GPU=1 ctest -j 16 -R "cuda|Cuda" > "$OUT/gpu_tests.txt" 2>&1)
 grep -E "tests passed|tests failed" "$OUT/gpu_tests.txt"; grep -E "\(Failed\)" "$OUT/gpu_tests.txt" | head
 ARGS="--sizes ${SIZES:-100,200,400} --cloud-points 8000000 --reps 3 ${BENCH_ARGS:-}"
 for round in $(seq ${ROUNDS:-2}); do
   for tree in new old; do
-    bin=build-gpu/bin; [ $tree = old ] && bin=$BUILD/bin
+    bin=build-gpu/bin; [ $tree = old ] && bin=$OLD/bin
     $bin/horizon_gpu_bench $ARGS > $OUT/${tree}_$round.csv 2> $OUT/${tree}_$round.err
   done
 done
 for tree in new old; do
-  bin=build-gpu/bin; [ $tree = old ] && bin=$BUILD/bin
+  bin=build-gpu/bin; [ $tree = old ] && bin=$OLD/bin
   ncu --clock-control none --metrics gpu__time_duration.sum,smsp__inst_executed.sum --csv \
     $bin/horizon_gpu_bench --sizes 200 --cloud-points 0 --reps 1 --no-host > $OUT/ncu_$tree.csv 2> /dev/null
 done

@@ -5,10 +5,7 @@
 # Usage (repository root, old tree in .deps/old-src, carry [".deps"]):
 #   [ROUNDS=2] [SANITIZERS="memcheck racecheck initcheck"] bash bench/gpu/device_verlet_ab.sh  (writes under $OUT)
 source bench/gpu/device_build.sh
-OLD=.deps/old-src/build-gpu
-cmake -S .deps/old-src -B $OLD -DCMAKE_BUILD_TYPE=Release -DHORIZON_CUDA=on -DHORIZON_PYTHON=off -DHORIZON_MPI=OFF \
-  -DCMAKE_PREFIX_PATH=/opt/deps/usr -DCMAKE_CUDA_ARCHITECTURES=90 > $OUT/configure_old.log 2>&1
-cmake --build $OLD -j "$(nproc)" --target horizon_device_verlet_bench horizon_verlet_bench 2>&1 | grep -E "error"
+source bench/gpu/device_build_old.sh horizon_device_verlet_bench horizon_verlet_bench
 (cd build-gpu && HORIZON_REQUIRE_GPU=1 ctest -j 16 -R "cuda|Cuda|Verlet|SimdTargets" > "$OUT/gpu_tests.txt" 2>&1)
 grep -E "tests passed|tests failed" "$OUT/gpu_tests.txt"; grep -E "\(Failed\)" "$OUT/gpu_tests.txt" | head
 for tool in ${SANITIZERS:-}; do
