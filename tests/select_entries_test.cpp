@@ -41,6 +41,33 @@ TEST(SelectEntries, InPlaceEqualsTheCopyForEveryThreadCount) {
   }
 }
 
+// The copying selection takes chunks of rows in order on any thread and places each after the
+// ones before it: rows longer than a chunk (16K entries), empty rows, rows losing everything.
+TEST(SelectEntries, CopyInChunksEqualsARowByRowSelection) {
+  NeighborList list = random_list(20000, 3);
+  auto [offsets, indices] = std::move(list).release();
+  for (const std::size_t row : {std::size_t{5}, std::size_t{9000}, std::size_t{9001}, std::size_t{19999}}) {
+    const auto at = static_cast<std::ptrdiff_t>(offsets[row + 1]);
+    const std::size_t longer = 40000;
+    indices.insert(indices.begin() + at, longer, point_id{0});
+    for (std::size_t e = 0; e < longer; ++e) indices[static_cast<std::size_t>(at) + e] = static_cast<point_id>((e * 7919) % 1000);
+    for (std::size_t i = row + 1; i < offsets.size(); ++i) offsets[i] += static_cast<std::int64_t>(longer);
+  }
+  list = NeighborList(std::move(offsets), std::move(indices), false);
+  auto keep = [](std::size_t i, point_id j) { return i % 11 != 0 && (j % 3 != 0 || i % 5 == 0); };
+  Buffer<std::int64_t> expected_offsets(list.size() + 1);
+  Buffer<point_id> expected_indices;
+  expected_offsets[0] = 0;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    for (const point_id j : list.row(i))
+      if (keep(i, j)) expected_indices.push_back(j);
+    expected_offsets[i + 1] = static_cast<std::int64_t>(expected_indices.size());
+  }
+  const NeighborList expected(std::move(expected_offsets), std::move(expected_indices), false);
+  ASSERT_GT(list.total(), 10 * (std::int64_t{1} << 14));
+  for (const int threads : {1, 2, 3, 7, 16}) EXPECT_EQ(detail::select_entries(list, keep, threads), expected) << threads << " threads";
+}
+
 TEST(SelectEntries, InPlaceKeepsAListThatLosesNothing) {
   const NeighborList list = random_list(1000, 2);
   const NeighborList selected = detail::select_entries(

@@ -46,6 +46,24 @@ TEST(VerletList, RefreshEqualsAFreshSearchWithinHalfTheSkin) {
       }
 }
 
+// The refresh writes chunks of about 16K entries each where the chunks before it end: hundreds
+// of chunks (a lattice and a dense blob) on more threads than this machine has cores give the
+// fresh search's list (rows longer than a chunk: SelectEntries tests).
+TEST(VerletList, RefreshInManyChunksOnManyThreads) {
+  PointSet points = lattice(30, 3, 10.0);
+  const PointSet blob = random_cloud(2000, 3, 5, 0.05);
+  for (std::size_t i = 0; i < blob.xyz.size(); ++i) points.xyz.push_back(blob.xyz[i] + 4.02);
+  SearchOptions options;
+  options.horizon = 3.015 * 10.0 / 29;
+  const VerletList verlet(points.view(), options, 0.1 * options.horizon);
+  std::mt19937_64 rng(9);
+  const PointSet now = moved(points, 0.02 * options.horizon, Metric::euclidean, rng);
+  ASSERT_FALSE(verlet.needs_rebuild(now.view()));
+  const NeighborList fresh = search(now.view(), options);
+  ASSERT_GT(fresh.total(), std::int64_t{2000} * 2000);
+  for (int threads : {1, 3, 8}) EXPECT_EQ(verlet.refresh(now.view(), threads), fresh) << threads << " threads";
+}
+
 TEST(VerletList, ClearErrors) {
   const PointSet points = random_cloud(100, 3, 1);
   SearchOptions options;
