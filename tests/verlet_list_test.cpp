@@ -46,10 +46,9 @@ TEST(VerletList, RefreshEqualsAFreshSearchWithinHalfTheSkin) {
       }
 }
 
-// The refresh writes chunks of about 16K entries each where the chunks before it end: hundreds
-// of chunks (a lattice and a dense blob) on more threads than this machine has cores give the
-// fresh search's list (rows longer than a chunk: SelectEntries tests).
-TEST(VerletList, RefreshInManyChunksOnManyThreads) {
+// Millions of candidates (a lattice and a dense blob of rows of 2,000 and more) refreshed on
+// one thread and on more threads than this machine has cores give the fresh search's list.
+TEST(VerletList, RefreshOfALargeListOnAnyThreadCount) {
   PointSet points = lattice(30, 3, 10.0);
   const PointSet blob = random_cloud(2000, 3, 5, 0.05);
   for (std::size_t i = 0; i < blob.xyz.size(); ++i) points.xyz.push_back(blob.xyz[i] + 4.02);

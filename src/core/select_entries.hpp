@@ -4,9 +4,7 @@
 #include <algorithm>
 #include <bit>
 #include <cstring>
-#include <vector>
 
-#include "chunk_prefix.hpp"
 #include "parallel_scan.hpp"
 #include "select_kernel.hpp"
 #include "horizon/neighbor_list.hpp"
@@ -15,61 +13,44 @@ namespace horizon::detail {
 
 /// The entries of each row that `mark(i, ids, count, bits)` marks: it sets bit e % 64 of
 /// bits[e / 64] for each id ids[e] of row i it keeps (count of them) and returns how many.
-/// One pass: the rows are taken in chunks of about chunk_entries entries, in order; a chunk's
-/// rows are marked (the verdicts kept as bits, each row's from a word of its own), its place in
-/// the new list found from the chunks before it (ChunkPrefix), and its kept ids written there
-/// while its candidates are still in cache. Marking every row first and writing them in a
-/// second loop read the candidates from memory twice: 16-core Xeon, Verlet refresh of lattice
-/// 100, m = 3.015, 28 ms for about 2 GB of traffic (bench/results/verlet_refresh_simd_h200host_16core).
-/// The new list's indices are allocated at the candidates' size (its capacity stays so).
+/// The verdicts are kept as bits, each row's from a word of its own (about 1/32 of the list),
+/// then the kept entries are written straight to their place: a temporary list moved
+/// afterwards cost more, testing twice read each candidate's point twice, and a single pass
+/// writing each thread's rows where they start, then moving them down, was no faster
+/// (measured: Verlet refresh of lattice 100, m = 3.015).
 template <class Mark>
 NeighborList select_marked(const NeighborList& list, Mark mark, int threads) {
-  constexpr std::int64_t chunk_entries = std::int64_t{1} << 14;  // 64 KB of ids: in L2 on every core
   const auto n = static_cast<std::int64_t>(list.size());
   const std::int64_t* from = list.offsets().data();
-  const std::int64_t total = from[n];
-  const std::int64_t chunks = std::max<std::int64_t>(1, (total + chunk_entries - 1) / chunk_entries);
-  // Chunk c holds the rows starting in [c, c + 1) * chunk_entries (the last one: up to row n).
-  auto chunk_row = [&](std::int64_t c) {
-    if (c >= chunks) return n;
-    return static_cast<std::int64_t>(std::lower_bound(from, from + n, c * chunk_entries) - from);
-  };
+  // first_word[i]: where row i's bits start (a row of s entries takes ceil(s / 64) words).
+  ScratchBuffer<std::int64_t> first_word(list.size() + 1);
+  first_word[0] = 0;
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+  for (std::int64_t i = 0; i < n; ++i) first_word[i + 1] = (from[i + 1] - from[i] + 63) / 64;
+  inclusive_scan(first_word.data(), first_word.size(), threads);
+  ScratchBuffer<std::uint64_t> kept(static_cast<std::size_t>(first_word[n]));
+
   Buffer<std::int64_t> offsets(list.size() + 1);
   offsets[0] = 0;
-  Buffer<point_id> indices(static_cast<std::size_t>(total));
-  ChunkPrefix prefix(chunks);
-#pragma omp parallel num_threads(threads) if (threads > 1)
-  {
-    std::vector<std::uint64_t> kept;
-    std::vector<std::int64_t> first_word;
-    for (std::int64_t c; (c = prefix.take()) < chunks;) {
-      const std::int64_t first = chunk_row(c), last = chunk_row(c + 1);
-      first_word.assign(1, 0);
-      for (std::int64_t i = first; i < last; ++i) first_word.push_back(first_word.back() + (from[i + 1] - from[i] + 63) / 64);
-      if (kept.size() < static_cast<std::size_t>(first_word.back())) kept.resize(static_cast<std::size_t>(first_word.back()));
-      std::int64_t marked = 0;
-      for (std::int64_t i = first; i < last; ++i) {
-        const auto row = list.row(static_cast<std::size_t>(i));
-        offsets[i + 1] = mark(static_cast<std::size_t>(i), row.data(), static_cast<std::int64_t>(row.size()),
-                              kept.data() + first_word[i - first]);
-        marked += offsets[i + 1];
-      }
-      std::int64_t at = prefix.place(c, marked);
-      for (std::int64_t i = first; i < last; ++i) {
-        const auto row = list.row(static_cast<std::size_t>(i));
-        const std::int64_t size = offsets[i + 1];
-        if (size == static_cast<std::int64_t>(row.size())) {  // all kept: no bits read
-          if (!row.empty()) std::memcpy(indices.data() + at, row.data(), row.size() * sizeof(point_id));
-        } else {
-          write_marked(row.data(), static_cast<std::int64_t>(row.size()), kept.data() + first_word[i - first], size,
-                       indices.data() + at);
-        }
-        at += size;
-        offsets[i + 1] = at;
-      }
+#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads) if (threads > 1)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto row = list.row(static_cast<std::size_t>(i));
+    offsets[i + 1] = mark(static_cast<std::size_t>(i), row.data(), static_cast<std::int64_t>(row.size()),
+                          kept.data() + first_word[i]);
+  }
+  inclusive_scan(offsets.data(), offsets.size(), threads);
+  Buffer<point_id> indices(static_cast<std::size_t>(offsets.back()));
+#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads) if (threads > 1)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto row = list.row(static_cast<std::size_t>(i));
+    point_id* out = indices.data() + offsets[i];
+    const std::int64_t size = offsets[i + 1] - offsets[i];
+    if (size == static_cast<std::int64_t>(row.size())) {  // all kept: no bits read
+      if (!row.empty()) std::memcpy(out, row.data(), row.size() * sizeof(point_id));
+    } else {
+      write_marked(row.data(), static_cast<std::int64_t>(row.size()), kept.data() + first_word[i], size, out);
     }
   }
-  indices.resize(static_cast<std::size_t>(offsets[n]));
   return NeighborList(std::move(offsets), std::move(indices), list.is_half());
 }
 

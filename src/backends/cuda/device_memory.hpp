@@ -5,7 +5,6 @@
 // counting the GPU memory they hold so a search can report its peak.
 #include <cuda_runtime.h>
 
-#include <algorithm>
 #include <cstdint>
 #include <mutex>
 #include <string>
@@ -59,16 +58,6 @@ struct MemoryMeter {
   std::size_t limit;
   std::size_t now = 0, peak = 0;
 };
-
-/// GPU memory a search can still take: free on the device plus what horizon's pool holds
-/// unused, and no more than its limit (SearchOptions::gpu_max_memory) leaves.
-inline std::size_t available_device_bytes(const MemoryMeter& meter) {
-  std::size_t free = 0, total = 0;
-  HORIZON_CUDA_CHECK(cudaMemGetInfo(&free, &total));
-  const std::size_t available = free + pool_spare_bytes(meter.pool);
-  if (meter.limit == 0) return available;
-  return std::min(available, meter.limit > meter.now ? meter.limit - meter.now : 0);
-}
 
 template <typename T>
 class DeviceArray {

@@ -2,9 +2,7 @@
 // count pass, a scan and a fill pass over them, a group of 8-32 lanes per row (its lanes read
 // consecutive candidates, so the loads are coalesced and the kept ids are written in order by a
 // ballot).
-#include <cub/block/block_scan.cuh>
 #include <cub/device/device_scan.cuh>
-#include <cuda/atomic>
 
 #include <cmath>
 
@@ -30,16 +28,19 @@ __global__ void find_moved(const double* now, const double* then, std::size_t co
 }
 
 /// Row i's candidates within the horizon, tested as the search tests them (row point minus
-/// candidate), by a group of G lanes of a warp (lane `lane` of the group at bits `group` of
-/// the warp); returns their number, and Fill writes their ids, in candidate order, from out.
+/// candidate), by a group of G lanes of a warp. Count: sizes[i]; Fill: their ids, in candidate
+/// order, from offsets[i].
 template <Metric M, int D, int G, bool Fill>
-__device__ std::int64_t refresh_row(const std::int64_t* candidate_offsets, const point_id* candidates,
-                                    const double* xyz, std::size_t i, double limit, unsigned lane, unsigned group,
-                                    point_id* out) {
-  const unsigned base = threadIdx.x % 32 - lane;
+__global__ void refresh_rows(const std::int64_t* candidate_offsets, const point_id* candidates, const double* xyz,
+                             std::size_t count, double limit, std::int64_t* sizes, const std::int64_t* offsets,
+                             point_id* out) {
+  const std::size_t i = (blockIdx.x * static_cast<std::size_t>(blockDim.x) + threadIdx.x) / G;
+  const unsigned lane = threadIdx.x % G, base = threadIdx.x % 32 - lane;
+  const unsigned group = (G == 32 ? 0xffffffffu : (1u << G) - 1) << base;
+  if (i >= count) return;  // the whole group
   const double* p = xyz + D * i;
   const std::int64_t begin = candidate_offsets[i], end = candidate_offsets[i + 1];
-  std::int64_t at = 0;
+  std::int64_t at = Fill ? offsets[i] : 0;
   for (std::int64_t first = begin; first < end; first += G) {
     const std::int64_t k = first + lane;
     bool keep = false;
@@ -53,92 +54,7 @@ __device__ std::int64_t refresh_row(const std::int64_t* candidate_offsets, const
     if (Fill && keep) out[at + __popc(ballot & ((1u << lane) - 1))] = j;
     at += __popc(ballot);
   }
-  return at;
-}
-
-template <int G>
-__device__ unsigned group_mask() {
-  const unsigned lane = threadIdx.x % G, base = threadIdx.x % 32 - lane;
-  return (G == 32 ? 0xffffffffu : (1u << G) - 1) << base;
-}
-
-/// Count (sizes[i]) or fill (from offsets[i]) a row per group of G lanes: the two-pass refresh,
-/// for lists whose candidates' size does not fit in the GPU's memory twice.
-template <Metric M, int D, int G, bool Fill>
-__global__ void refresh_rows(const std::int64_t* candidate_offsets, const point_id* candidates, const double* xyz,
-                             std::size_t count, double limit, std::int64_t* sizes, const std::int64_t* offsets,
-                             point_id* out) {
-  const std::size_t i = (blockIdx.x * static_cast<std::size_t>(blockDim.x) + threadIdx.x) / G;
-  if (i >= count) return;  // the whole group
-  const unsigned lane = threadIdx.x % G;
-  const std::int64_t size = refresh_row<M, D, G, Fill>(candidate_offsets, candidates, xyz, i, limit, lane,
-                                                       group_mask<G>(), Fill ? out + offsets[i] : nullptr);
-  if (!Fill && lane == 0) sizes[i] = size;
-}
-
-/// Rows per chunk of the one-pass refresh: four rows per group of a block.
-template <int G>
-constexpr int chunk_rows = verlet_block / G * 4;
-
-/// Publishes the size of chunk `c` in status[c] and returns the sizes of chunks 0 .. c - 1
-/// summed: a decoupled look-back (as CUB's one-pass scans), waiting only on chunks still
-/// counting. status[c]: 0, then its size | counted, then the sum up to it | placed.
-__device__ std::int64_t place_chunk(unsigned long long* status, std::size_t c, std::int64_t size) {
-  constexpr unsigned long long counted = 1ull << 62, placed = 1ull << 63, value = counted - 1;
-  cuda::atomic_ref<unsigned long long, cuda::thread_scope_device> mine(status[c]);
-  mine.store(static_cast<unsigned long long>(size) | counted, cuda::memory_order_relaxed);
-  std::int64_t before = 0;
-  for (std::size_t p = c; p-- > 0;) {
-    cuda::atomic_ref<unsigned long long, cuda::thread_scope_device> theirs(status[p]);
-    unsigned long long state;
-    while ((state = theirs.load(cuda::memory_order_relaxed)) == 0) __nanosleep(20);
-    before += static_cast<std::int64_t>(state & value);
-    if (state & placed) break;
-  }
-  mine.store(static_cast<unsigned long long>(before + size) | placed, cuda::memory_order_relaxed);
-  return before;
-}
-
-/// The refresh in one pass: each block takes the next chunk of chunk_rows<G> rows (in order:
-/// `next_chunk` counts them out, so a chunk's predecessors are running or done), counts its
-/// rows' kept candidates, learns where the chunk starts (place_chunk), then tests the same
-/// candidates again, now in its caches, and writes the kept ids and the rows' ends
-/// (offsets[i + 1]). Count + fill read every candidate and its point from memory twice.
-template <Metric M, int D, int G>
-__global__ void __launch_bounds__(verlet_block)
-    refresh_chunks(const std::int64_t* candidate_offsets, const point_id* candidates, const double* xyz,
-                   std::size_t count, double limit, unsigned long long* next_chunk, unsigned long long* status,
-                   std::int64_t* offsets, point_id* out) {
-  constexpr int rows = chunk_rows<G>, groups = verlet_block / G;
-  static_assert(rows <= verlet_block, "a thread per row for the chunk's scan");
-  using Scan = cub::BlockScan<std::int64_t, verlet_block>;
-  __shared__ typename Scan::TempStorage scan;
-  __shared__ std::int64_t row_start[rows];  // a row's size, then where it starts in the chunk
-  __shared__ std::int64_t chunk_start;
-  __shared__ unsigned long long chunk;
-  if (threadIdx.x == 0) chunk = atomicAdd(next_chunk, 1ull);
-  __syncthreads();
-  const std::size_t first = static_cast<std::size_t>(chunk) * rows;
-  const unsigned lane = threadIdx.x % G, group = group_mask<G>();
-  for (int r = static_cast<int>(threadIdx.x / G); r < rows; r += groups) {
-    const std::size_t i = first + r;
-    const std::int64_t size =
-        i < count ? refresh_row<M, D, G, false>(candidate_offsets, candidates, xyz, i, limit, lane, group, nullptr) : 0;
-    if (lane == 0) row_start[r] = size;
-  }
-  __syncthreads();
-  std::int64_t before = 0, total = 0;
-  Scan(scan).ExclusiveSum(threadIdx.x < rows ? row_start[threadIdx.x] : 0, before, total);
-  if (threadIdx.x < rows) row_start[threadIdx.x] = before;
-  if (threadIdx.x == 0) chunk_start = place_chunk(status, chunk, total);
-  __syncthreads();
-  for (int r = static_cast<int>(threadIdx.x / G); r < rows; r += groups) {
-    const std::size_t i = first + r;
-    if (i >= count) break;  // the whole group
-    const std::int64_t at = chunk_start + row_start[r];
-    const std::int64_t size = refresh_row<M, D, G, true>(candidate_offsets, candidates, xyz, i, limit, lane, group, out + at);
-    if (lane == 0) offsets[i + 1] = at + size;
-  }
+  if (!Fill && lane == 0) sizes[i] = at;
 }
 
 unsigned blocks_for(std::size_t threads) {
@@ -161,34 +77,18 @@ bool moved_past(const double* now, const double* then, std::size_t count, double
 }
 
 /// The refreshed list's offsets (count + 1) and ids, allocated from the meter's pool; G lanes
-/// per row. In one pass into ids sized as the candidates (refresh_chunks) when the GPU has the
-/// memory, else by count, scan and fill into ids of the exact size.
+/// per row.
 template <Metric M, int D, int G>
 std::int64_t refresh_into(const DeviceNeighborList& candidates, const double* xyz, double horizon,
                           cudaStream_t stream, MemoryMeter& meter, DeviceArray<std::int64_t>& offsets,
                           DeviceArray<point_id>& ids) {
   const std::size_t count = candidates.size();
   const double limit = metric_threshold(M, horizon);
+  const unsigned blocks = blocks_for(G * count);
+  DeviceArray<std::int64_t> sizes(count, meter);
   offsets = DeviceArray<std::int64_t>(count + 1, meter);
   HORIZON_CUDA_CHECK(cudaMemsetAsync(offsets.get(), 0, sizeof(std::int64_t), stream));
   if (count == 0) return 0;
-  std::int64_t total = 0;
-  const auto most_ids = static_cast<std::size_t>(candidates.total());
-  const std::size_t chunks = (count + chunk_rows<G> - 1) / chunk_rows<G>;
-  if ((most_ids + 2 * chunks) * sizeof(point_id) < available_device_bytes(meter) / 2) {
-    ids = DeviceArray<point_id>(most_ids, meter);
-    DeviceArray<unsigned long long> status(chunks + 1, meter);  // the chunks' states, then the next chunk's number
-    HORIZON_CUDA_CHECK(cudaMemsetAsync(status.get(), 0, status.bytes(), stream));
-    refresh_chunks<M, D, G><<<static_cast<unsigned>(chunks), verlet_block, 0, stream>>>(
-        candidates.offsets(), candidates.indices(), xyz, count, limit, status.get() + chunks, status.get(),
-        offsets.get(), ids.get());
-    HORIZON_CUDA_CHECK(cudaGetLastError());
-    HORIZON_CUDA_CHECK(cudaMemcpyAsync(&total, offsets.get() + count, sizeof(total), cudaMemcpyDeviceToHost, stream));
-    HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
-    return total;
-  }
-  const unsigned blocks = blocks_for(G * count);
-  DeviceArray<std::int64_t> sizes(count, meter);
   refresh_rows<M, D, G, false><<<blocks, verlet_block, 0, stream>>>(candidates.offsets(), candidates.indices(), xyz,
                                                                     count, limit, sizes.get(), nullptr, nullptr);
   HORIZON_CUDA_CHECK(cudaGetLastError());
@@ -196,6 +96,7 @@ std::int64_t refresh_into(const DeviceNeighborList& candidates, const double* xy
   HORIZON_CUDA_CHECK(cub::DeviceScan::InclusiveSum(nullptr, temp_bytes, sizes.get(), offsets.get() + 1, count, stream));
   DeviceArray<unsigned char> temp(temp_bytes, meter);
   HORIZON_CUDA_CHECK(cub::DeviceScan::InclusiveSum(temp.get(), temp_bytes, sizes.get(), offsets.get() + 1, count, stream));
+  std::int64_t total = 0;
   HORIZON_CUDA_CHECK(cudaMemcpyAsync(&total, offsets.get() + count, sizeof(total), cudaMemcpyDeviceToHost, stream));
   HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
   ids = DeviceArray<point_id>(static_cast<std::size_t>(total), meter);
