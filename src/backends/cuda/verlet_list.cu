@@ -27,10 +27,6 @@ __global__ void find_moved(const double* now, const double* then, std::size_t co
   if (!(metric_accumulate<M>(a[0] - b[0], a[1] - b[1], D == 3 ? a[2] - b[2] : 0.0) < threshold)) *moved = 1;
 }
 
-/// Candidates a lane loads before it tests any: their loads overlap. One at a time, a warp
-/// waited on each candidate's id and then on its point, one after the other.
-constexpr int verlet_unroll = 4;
-
 /// Row i's candidates within the horizon, tested as the search tests them (row point minus
 /// candidate), by a group of G lanes of a warp. Count: sizes[i]; Fill: their ids, in candidate
 /// order, from offsets[i].
@@ -38,32 +34,25 @@ template <Metric M, int D, int G, bool Fill>
 __global__ void refresh_rows(const std::int64_t* candidate_offsets, const point_id* candidates, const double* xyz,
                              std::size_t count, double limit, std::int64_t* sizes, const std::int64_t* offsets,
                              point_id* out) {
-  constexpr int U = verlet_unroll;
   const std::size_t i = (blockIdx.x * static_cast<std::size_t>(blockDim.x) + threadIdx.x) / G;
   const unsigned lane = threadIdx.x % G, base = threadIdx.x % 32 - lane;
   const unsigned group = (G == 32 ? 0xffffffffu : (1u << G) - 1) << base;
   if (i >= count) return;  // the whole group
   const double* p = xyz + D * i;
-  const double px = p[0], py = p[1], pz = D == 3 ? p[2] : 0.0;
   const std::int64_t begin = candidate_offsets[i], end = candidate_offsets[i + 1];
   std::int64_t at = Fill ? offsets[i] : 0;
-  for (std::int64_t first = begin; first < end; first += U * G) {
-    point_id j[U];
-    double q[U][3];
-#pragma unroll
-    for (int u = 0; u < U; ++u) j[u] = first + u * G + lane < end ? candidates[first + u * G + lane] : -1;
-#pragma unroll
-    for (int u = 0; u < U; ++u)
-      if (j[u] >= 0)
-        for (int a = 0; a < D; ++a) q[u][a] = xyz[D * static_cast<std::size_t>(j[u]) + a];
-#pragma unroll
-    for (int u = 0; u < U; ++u) {
-      const bool keep =
-          j[u] >= 0 && metric_accumulate<M>(px - q[u][0], py - q[u][1], D == 3 ? pz - q[u][D - 1] : 0.0) < limit;
-      const unsigned ballot = (__ballot_sync(group, keep) & group) >> base;
-      if (Fill && keep) out[at + __popc(ballot & ((1u << lane) - 1))] = j[u];
-      at += __popc(ballot);
+  for (std::int64_t first = begin; first < end; first += G) {
+    const std::int64_t k = first + lane;
+    bool keep = false;
+    point_id j = 0;
+    if (k < end) {
+      j = candidates[k];
+      const double* q = xyz + D * static_cast<std::size_t>(j);
+      keep = metric_accumulate<M>(p[0] - q[0], p[1] - q[1], D == 3 ? p[2] - q[2] : 0.0) < limit;
     }
+    const unsigned ballot = (__ballot_sync(group, keep) & group) >> base;
+    if (Fill && keep) out[at + __popc(ballot & ((1u << lane) - 1))] = j;
+    at += __popc(ballot);
   }
   if (!Fill && lane == 0) sizes[i] = at;
 }
