@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "datasets.hpp"
 #include "same_families.hpp"
 #include "horizon/cuda.hpp"
 #include "horizon/device_verlet_list.hpp"
@@ -299,6 +300,41 @@ TEST(Cuda, DeviceVerletRefreshEqualsAFreshSearchWithinHalfTheSkin) {
   periodic.box = {1, 1, 1};
   EXPECT_THROW(DeviceVerletList(nullptr, 0, 3, periodic, 0.01), Error);
   EXPECT_THROW(DeviceVerletList(nullptr, 0, 3, options_for(0.1, Backend::serial), 0), Error);
+}
+
+TEST(Cuda, DeviceVerletRefreshDecidesTiesAndFarOffsetsAsTheDoubleTest) {
+  REQUIRE_GPU();
+  // The refresh tests candidates in single precision first and in double where that cannot
+  // decide: pairs exactly on the horizon (integer coordinates, δ = 2), thirds 1000 away from
+  // the origin (rounded in both precisions), and points 10^7 away (single precision resolves
+  // nothing there), unmoved and moved, every metric, 2-D and 3-D.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  struct Case {
+    double offset, scale, horizon;
+  };
+  for (const Case c : {Case{0, 1, 2}, Case{1000, 1.0 / 3, 2.0 / 3}, Case{1e7, 1, 2}})
+    for (int dims : {2, 3})
+      for (Metric metric : {Metric::euclidean, Metric::manhattan, Metric::chebyshev}) {
+        PointSet points = testing::integer_cloud(dims == 3 ? 6000 : 3000, dims, dims == 3 ? 20 : 60, 11);
+        for (double& x : points.xyz) x = c.offset + c.scale * x;
+        SearchOptions options = options_for(c.horizon, Backend::serial);
+        options.metric = metric;
+        const std::size_t bytes = points.xyz.size() * sizeof(double);
+        double* device_xyz = nullptr;
+        ASSERT_EQ(cudaMalloc(&device_xyz, bytes), cudaSuccess);
+        ASSERT_EQ(cudaMemcpy(device_xyz, points.xyz.data(), bytes, cudaMemcpyHostToDevice), cudaSuccess);
+        const double skin = 0.2 * c.horizon;
+        const DeviceVerletList verlet(device_xyz, points.size(), dims, options, skin);
+        for (double step : {0.0, 1e-9 * c.horizon, 0.2 * skin}) {
+          PointSet now = points;
+          for (double& x : now.xyz) x += (metric == Metric::chebyshev ? step : step / dims) * unit(rng);
+          ASSERT_EQ(cudaMemcpy(device_xyz, now.xyz.data(), bytes, cudaMemcpyHostToDevice), cudaSuccess);
+          EXPECT_EQ(verlet.refresh(device_xyz).to_host(false), search(now.view(), options))
+              << "offset " << c.offset << " " << dims << "-D " << metric_name(metric) << " step " << step;
+        }
+        cudaFree(device_xyz);
+      }
 }
 
 TEST(Cuda, ErrorsAreClear) {
