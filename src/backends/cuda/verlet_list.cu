@@ -2,9 +2,7 @@
 // count pass, a scan and a fill pass over them, a group of 8-32 lanes per row (its lanes read
 // consecutive candidates, so the loads are coalesced and the kept ids are written in order by a
 // ballot).
-#include <cub/block/block_reduce.cuh>
 #include <cub/device/device_scan.cuh>
-#include <cuda/functional>
 
 #include <cmath>
 
@@ -29,73 +27,18 @@ __global__ void find_moved(const double* now, const double* then, std::size_t co
   if (!(metric_accumulate<M>(a[0] - b[0], a[1] - b[1], D == 3 ? a[2] - b[2] : 0.0) < threshold)) *moved = 1;
 }
 
-/// The points in single precision (x, y, z, 0: one aligned 16-byte load) for a first test of
-/// every candidate, and the largest |coordinate| (as the bits of a double, which order as
-/// integers), which bounds their rounding. The refresh is bound by gathering the candidates'
-/// points through L2 (a second test of a chunk's candidates from the caches, or four loads in
-/// flight per lane, gained nothing: bench/results/h200_device_verlet_unroll_tried); the
-/// 16-byte points take fewer sectors than 24-byte ones, and a single load instead of three.
-template <int D>
-__global__ void to_single(const double* xyz, std::size_t count, float4* single, unsigned long long* largest) {
-  using Reduce = cub::BlockReduce<double, verlet_block>;
-  __shared__ typename Reduce::TempStorage reduce;
-  const std::size_t i = blockIdx.x * static_cast<std::size_t>(blockDim.x) + threadIdx.x;
-  double most = 0;
-  if (i < count) {
-    const double* p = xyz + D * i;
-    const double z = D == 3 ? p[2] : 0.0;
-    single[i] = make_float4(static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(z), 0.0f);
-    most = fmax(fmax(fabs(p[0]), fabs(p[1])), fabs(z));
-    if (most != most) most = INFINITY;  // NaN: no single-precision verdicts at all
-  }
-  const double block_most = Reduce(reduce).Reduce(most, cuda::maximum<>{});
-  if (threadIdx.x == 0) atomicMax(largest, static_cast<unsigned long long>(__double_as_longlong(block_most)));
-}
-
-/// Where the single-precision accumulated distance decides alone: below `in` the double test
-/// keeps the pair, above `out` it drops it, in between (or always, when single precision cannot
-/// resolve the horizon) the double test runs. Each coordinate is rounded by at most u·largest
-/// (u = 2^-24), a difference by u of itself more, and the sums and squares by a few u of the
-/// result: a margin of 8·u·largest per axis (three axes for Manhattan) and 16 u of the horizon
-/// covers them, and the double test's own rounding (10^-16), many times over.
-struct SingleBounds {
-  float in, out;
-};
-
-template <Metric M>
-__device__ SingleBounds single_bounds(double horizon, const unsigned long long* largest) {
-  constexpr double u = 0x1p-24;
-  const double most = __longlong_as_double(static_cast<long long>(*largest));
-  const double axes = M == Metric::manhattan ? 3 : 1;
-  const double lo = horizon * (1 - 16 * u) - 8 * u * most * axes, hi = horizon * (1 + 16 * u) + 8 * u * most * axes;
-  if (!(most < 1e30) || !(lo > 0.5 * horizon)) return {-1.0f, INFINITY};  // every candidate in double
-  if constexpr (M == Metric::euclidean)
-    return {__double2float_rd(lo * lo * (1 - 16 * u)), __double2float_ru(hi * hi * (1 + 16 * u))};
-  return {__double2float_rd(lo * (1 - 16 * u)), __double2float_ru(hi * (1 + 16 * u))};
-}
-
-template <Metric M>
-__device__ float single_accumulate(float dx, float dy, float dz) {
-  if constexpr (M == Metric::euclidean) return (dx * dx + dy * dy) + dz * dz;
-  if constexpr (M == Metric::manhattan) return (fabsf(dx) + fabsf(dy)) + fabsf(dz);
-  return fmaxf(fmaxf(fabsf(dx), fabsf(dy)), fabsf(dz));
-}
-
-/// Row i's candidates within the horizon, by a group of G lanes of a warp: each tested in
-/// single precision (single_bounds), and those it cannot decide as the search tests them (row
-/// point minus candidate, in double). Count: sizes[i]; Fill: their ids, in candidate order,
-/// from offsets[i].
+/// Row i's candidates within the horizon, tested as the search tests them (row point minus
+/// candidate), by a group of G lanes of a warp. Count: sizes[i]; Fill: their ids, in candidate
+/// order, from offsets[i].
 template <Metric M, int D, int G, bool Fill>
 __global__ void refresh_rows(const std::int64_t* candidate_offsets, const point_id* candidates, const double* xyz,
-                             const float4* single, const unsigned long long* largest, std::size_t count,
-                             double horizon, double limit, std::int64_t* sizes, const std::int64_t* offsets, point_id* out) {
+                             std::size_t count, double limit, std::int64_t* sizes, const std::int64_t* offsets,
+                             point_id* out) {
   const std::size_t i = (blockIdx.x * static_cast<std::size_t>(blockDim.x) + threadIdx.x) / G;
   const unsigned lane = threadIdx.x % G, base = threadIdx.x % 32 - lane;
   const unsigned group = (G == 32 ? 0xffffffffu : (1u << G) - 1) << base;
   if (i >= count) return;  // the whole group
-  const SingleBounds bounds = single_bounds<M>(horizon, largest);
   const double* p = xyz + D * i;
-  const float4 ps = single[i];
   const std::int64_t begin = candidate_offsets[i], end = candidate_offsets[i + 1];
   std::int64_t at = Fill ? offsets[i] : 0;
   for (std::int64_t first = begin; first < end; first += G) {
@@ -104,13 +47,8 @@ __global__ void refresh_rows(const std::int64_t* candidate_offsets, const point_
     point_id j = 0;
     if (k < end) {
       j = candidates[k];
-      const float4 qs = single[j];
-      const float near = single_accumulate<M>(ps.x - qs.x, ps.y - qs.y, ps.z - qs.z);
-      keep = near < bounds.in;
-      if (!keep && !(near > bounds.out)) {
-        const double* q = xyz + D * static_cast<std::size_t>(j);
-        keep = metric_accumulate<M>(p[0] - q[0], p[1] - q[1], D == 3 ? p[2] - q[2] : 0.0) < limit;
-      }
+      const double* q = xyz + D * static_cast<std::size_t>(j);
+      keep = metric_accumulate<M>(p[0] - q[0], p[1] - q[1], D == 3 ? p[2] - q[2] : 0.0) < limit;
     }
     const unsigned ballot = (__ballot_sync(group, keep) & group) >> base;
     if (Fill && keep) out[at + __popc(ballot & ((1u << lane) - 1))] = j;
@@ -145,19 +83,14 @@ std::int64_t refresh_into(const DeviceNeighborList& candidates, const double* xy
                           cudaStream_t stream, MemoryMeter& meter, DeviceArray<std::int64_t>& offsets,
                           DeviceArray<point_id>& ids) {
   const std::size_t count = candidates.size();
+  const double limit = metric_threshold(M, horizon);
   const unsigned blocks = blocks_for(G * count);
   DeviceArray<std::int64_t> sizes(count, meter);
   offsets = DeviceArray<std::int64_t>(count + 1, meter);
   HORIZON_CUDA_CHECK(cudaMemsetAsync(offsets.get(), 0, sizeof(std::int64_t), stream));
   if (count == 0) return 0;
-  DeviceArray<float4> single(count, meter);
-  DeviceArray<unsigned long long> largest(1, meter);
-  HORIZON_CUDA_CHECK(cudaMemsetAsync(largest.get(), 0, largest.bytes(), stream));
-  to_single<D><<<blocks_for(count), verlet_block, 0, stream>>>(xyz, count, single.get(), largest.get());
-  HORIZON_CUDA_CHECK(cudaGetLastError());
   refresh_rows<M, D, G, false><<<blocks, verlet_block, 0, stream>>>(candidates.offsets(), candidates.indices(), xyz,
-                                                                    single.get(), largest.get(), count, horizon,
-                                                                    metric_threshold(M, horizon), sizes.get(), nullptr, nullptr);
+                                                                    count, limit, sizes.get(), nullptr, nullptr);
   HORIZON_CUDA_CHECK(cudaGetLastError());
   std::size_t temp_bytes = 0;
   HORIZON_CUDA_CHECK(cub::DeviceScan::InclusiveSum(nullptr, temp_bytes, sizes.get(), offsets.get() + 1, count, stream));
@@ -169,8 +102,7 @@ std::int64_t refresh_into(const DeviceNeighborList& candidates, const double* xy
   ids = DeviceArray<point_id>(static_cast<std::size_t>(total), meter);
   if (total > 0)
     refresh_rows<M, D, G, true><<<blocks, verlet_block, 0, stream>>>(candidates.offsets(), candidates.indices(), xyz,
-                                                                      single.get(), largest.get(), count, horizon,
-                                                                      metric_threshold(M, horizon), nullptr, offsets.get(), ids.get());
+                                                                      count, limit, nullptr, offsets.get(), ids.get());
   HORIZON_CUDA_CHECK(cudaGetLastError());
   return total;
 }
