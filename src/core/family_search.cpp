@@ -55,10 +55,12 @@ std::vector<CellRun> split_into_slabs(const CellIndex& index, int threads) {
 }
 
 /// Whether count_each_pair_once() gives the counts: every point holds a row, with one horizon.
+/// Periodic images may be among the points: a pair counts for each side at once, and the
+/// images' counts are never read (a point's pairs across the box are met from its own side,
+/// with the other point's image).
 bool pairs_countable(const FamilyPass& pass) {
-  const CellIndex& index = *pass.index;
   const std::size_t queries = pass.options->queries;
-  return !pass.row_radius && index.row_count() == index.point_count() && (queries == 0 || queries >= index.row_count());
+  return !pass.row_radius && (queries == 0 || queries >= pass.index->row_count());
 }
 
 /// Row offsets of every point: the count pass over `runs` (or each pair once, over slabs),
@@ -82,8 +84,17 @@ Buffer<std::int64_t> count_rows(FamilyPass& pass, const std::vector<CellRun>& ru
         count_each_pair_once(pass, slabs[static_cast<std::size_t>(s)], counts.data());
     }
     const point_id* order = index.order().data();
+    if (index.row_count() == index.point_count()) {
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-    for (std::int64_t p = 0; p < n; ++p) offsets[order[p] + 1] = counts[p];
+      for (std::int64_t p = 0; p < n; ++p) offsets[order[p] + 1] = counts[p];
+    } else {  // each cell's images sort after its points
+      const auto cells = static_cast<std::int64_t>(index.occupied_cells());
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+      for (std::int64_t c = 0; c < cells; ++c) {
+        const auto [first, last] = index.rows_of(static_cast<std::size_t>(c));
+        for (std::int64_t p = first; p < last; ++p) offsets[order[p] + 1] = counts[p];
+      }
+    }
   } else {
     std::memset(offsets.data(), 0, offsets.size() * sizeof(std::int64_t));
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
