@@ -54,10 +54,9 @@ std::vector<CellRun> split_into_slabs(const CellIndex& index, int threads) {
   return slabs;
 }
 
-/// Whether count_each_pair_once() gives the counts: every point holds a row, with one horizon.
-/// Periodic images may be among the points: a pair counts for each side at once, and the
-/// images' counts are never read (a point's pairs across the box are met from its own side,
-/// with the other point's image).
+/// Whether count_each_pair_once() gives the counts: one horizon, and every point holds a row
+/// but the periodic images. A pair counts for both sides at once; the images' counts are never
+/// read (a point's pairs across the box are met from its own side, with the other's image).
 bool pairs_countable(const FamilyPass& pass) {
   const std::size_t queries = pass.options->queries;
   return !pass.row_radius && (queries == 0 || queries >= pass.index->row_count());
