@@ -67,7 +67,6 @@ bool pairs_countable(const FamilyPass& pass) {
 Buffer<std::int64_t> count_rows(FamilyPass& pass, const std::vector<CellRun>& runs, int threads) {
   const CellIndex& index = *pass.index;
   const auto run_count = static_cast<std::int64_t>(runs.size());
-  const auto n = static_cast<std::int64_t>(index.row_count());
   Buffer<std::int64_t> offsets(index.row_count() + 1);
   offsets[0] = 0;
   pass.offsets = offsets.data();
@@ -83,16 +82,11 @@ Buffer<std::int64_t> count_rows(FamilyPass& pass, const std::vector<CellRun>& ru
         count_each_pair_once(pass, slabs[static_cast<std::size_t>(s)], counts.data());
     }
     const point_id* order = index.order().data();
-    if (index.row_count() == index.point_count()) {
+    const auto cells = static_cast<std::int64_t>(index.occupied_cells());
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-      for (std::int64_t p = 0; p < n; ++p) offsets[order[p] + 1] = counts[p];
-    } else {  // each cell's images sort after its points
-      const auto cells = static_cast<std::int64_t>(index.occupied_cells());
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-      for (std::int64_t c = 0; c < cells; ++c) {
-        const auto [first, last] = index.rows_of(static_cast<std::size_t>(c));
-        for (std::int64_t p = first; p < last; ++p) offsets[order[p] + 1] = counts[p];
-      }
+    for (std::int64_t c = 0; c < cells; ++c) {  // a cell's rows: its points before its images
+      const auto [first, last] = index.rows_of(static_cast<std::size_t>(c));
+      for (std::int64_t p = first; p < last; ++p) offsets[order[p] + 1] = counts[p];
     }
   } else {
     std::memset(offsets.data(), 0, offsets.size() * sizeof(std::int64_t));
