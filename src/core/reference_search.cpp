@@ -73,49 +73,97 @@ void validate_box(PointView points, const SearchOptions& options, const char* wh
 
 namespace {
 
-/// The images append_images writes, as offsets: point i's from first[i] to first[i + 1]. With
-/// `check`, the points are validated against the box in the same pass (validate_box's error).
-ScratchBuffer<std::int64_t> image_offsets(PointView points, const SearchOptions& options, int threads,
-                                          bool check = false) {
+/// The points that have periodic images, ascending, and where their images start: point
+/// which[k]'s are images first[k] to first[k + 1]. Only the points near a face are listed: a
+/// count per point and its scan cost more than making the images (2-core Zen 3 VM, 10^6 points,
+/// 12 % with images: 15 ms on one core).
+struct ImagePlan {
+  std::vector<std::int64_t> which;
+  std::vector<std::int64_t> first{0};
+  std::size_t count() const { return static_cast<std::size_t>(first.back()); }
+};
+
+/// Lists points [begin, end) of `xyz` (D coordinates each, type T) that have images, with
+/// their image counts, and lowers `outside` to the first that lies outside the box.
+template <int D, class T>
+void plan_range(const T* xyz, const PeriodicBox& box, std::int64_t begin, std::int64_t end,
+                std::vector<std::int64_t>& which, std::vector<int>& count, std::int64_t& outside) {
+  // Images across the low face below below[a], across the high face from above[a] (as
+  // PeriodicBox::axis_shifts). An open axis has neither (NaN compares false) and no bounds.
+  double below[D], above[D];
+  bool periodic[D];
+  for (int a = 0; a < D; ++a) {
+    periodic[a] = box.period[a] > 0;
+    below[a] = periodic[a] ? box.reach[a] : std::numeric_limits<double>::quiet_NaN();
+    above[a] = periodic[a] ? box.period[a] - box.reach[a] : std::numeric_limits<double>::quiet_NaN();
+  }
+  for (std::int64_t i = begin; i < end; ++i) {
+    int images = 1;
+    bool inside = true;
+    for (int a = 0; a < D; ++a) {  // no branch: a point near a face is rare, and unpredictable
+      const double x = static_cast<double>(xyz[i * D + a]);
+      images *= 1 + (x < below[a]) + (x >= above[a]);
+      inside &= !periodic[a] | ((x >= 0) & (x < box.period[a]));
+    }
+    if (!inside && i < outside) outside = i;
+    if (images > 1) {
+      which.push_back(i);
+      count.push_back(images - 1);
+    }
+  }
+}
+
+/// The plan of `points`' images. With `check`, the points are validated against the box in
+/// the same pass (validate_box's error).
+ImagePlan plan_images(PointView points, const SearchOptions& options, int threads, bool check = false) {
   const auto n = static_cast<std::int64_t>(points.size());
   const PeriodicBox box(options, points.dims());
-  ScratchBuffer<std::int64_t> first(points.size() + 1);
-  first[0] = 0;
+  if (n <= (1 << 14)) threads = 1;
+  std::vector<std::vector<std::int64_t>> which(static_cast<std::size_t>(threads));
+  std::vector<std::vector<int>> count(static_cast<std::size_t>(threads));
   std::int64_t outside = n;
-#pragma omp parallel for schedule(static) reduction(min : outside) num_threads(threads) \
-    if (threads > 1 && n > (1 << 14))
-  for (std::int64_t i = 0; i < n; ++i) {
-    double xyz[3];
-    coordinates_of(points, static_cast<std::size_t>(i), xyz);
-    first[static_cast<std::size_t>(i) + 1] = box.image_count(xyz);
-    if (check && !box.contains(xyz)) outside = std::min(outside, i);
+#pragma omp parallel num_threads(threads) reduction(min : outside)
+  {
+    const int t = omp_get_thread_num(), used = omp_get_num_threads();
+    const std::int64_t begin = n * t / used, end = n * (t + 1) / used;
+    auto& w = which[static_cast<std::size_t>(t)];
+    auto& c = count[static_cast<std::size_t>(t)];
+    const bool three = points.dims() == 3;
+    if (points.is_float32())
+      (three ? plan_range<3, float> : plan_range<2, float>)(points.float32_data(), box, begin, end, w, c, outside);
+    else
+      (three ? plan_range<3, double> : plan_range<2, double>)(points.float64_data(), box, begin, end, w, c, outside);
   }
-  if (outside < n) {
+  if (check && outside < n) {
     double xyz[3];
     coordinates_of(points, static_cast<std::size_t>(outside), xyz);
     throw_outside_box("point", outside, xyz, points.dims(), options);
   }
-  inclusive_scan(first.data() + 1, points.size(), threads);
-  return first;
+  ImagePlan plan;
+  for (std::size_t t = 0; t < which.size(); ++t) {
+    plan.which.insert(plan.which.end(), which[t].begin(), which[t].end());
+    for (const int images : count[t]) plan.first.push_back(plan.first.back() + images);
+  }
+  return plan;
 }
 
-/// Writes the images of image_offsets at `xyz` and their originals' indices (+ `id_base`) at
-/// `id_of`, in parallel.
-void write_images(PointView points, const SearchOptions& options, const ScratchBuffer<std::int64_t>& first,
-                  double* xyz, point_id* id_of, point_id id_base, int threads) {
+/// Writes the images of `plan` at `xyz` and their originals' indices (+ `id_base`) at `id_of`,
+/// in parallel.
+void write_images(PointView points, const SearchOptions& options, const ImagePlan& plan, double* xyz, point_id* id_of,
+                  point_id id_base, int threads) {
   const int dims = points.dims();
-  const auto n = static_cast<std::int64_t>(points.size());
+  const auto listed = static_cast<std::int64_t>(plan.which.size());
   const PeriodicBox box(options, dims);
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1 && n > (1 << 14))
-  for (std::int64_t i = 0; i < n; ++i) {
-    const auto at = static_cast<std::size_t>(first[static_cast<std::size_t>(i)]);
-    if (first[static_cast<std::size_t>(i) + 1] == first[static_cast<std::size_t>(i)]) continue;  // most points
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1 && listed > (1 << 12))
+  for (std::int64_t k = 0; k < listed; ++k) {
+    const auto i = static_cast<std::size_t>(plan.which[static_cast<std::size_t>(k)]);
+    const auto at = static_cast<std::size_t>(plan.first[static_cast<std::size_t>(k)]);
     double point[3], shift[26][3];
-    coordinates_of(points, static_cast<std::size_t>(i), point);
+    coordinates_of(points, i, point);
     const int count = box.image_shifts(point, shift);
-    for (int k = 0; k < count; ++k) {
-      for (int a = 0; a < dims; ++a) xyz[(at + k) * dims + a] = point[a] + shift[k][a];
-      id_of[at + k] = id_base + static_cast<point_id>(i);
+    for (int m = 0; m < count; ++m) {
+      for (int a = 0; a < dims; ++a) xyz[(at + m) * dims + a] = point[a] + shift[m][a];
+      id_of[at + m] = id_base + static_cast<point_id>(i);
     }
   }
 }
@@ -125,11 +173,11 @@ void write_images(PointView points, const SearchOptions& options, const ScratchB
 void append_images(PointView points, const SearchOptions& options, PointSet& local, std::vector<point_id>& id_of,
                    point_id id_base) {
   const int threads = omp_get_max_threads();
-  const ScratchBuffer<std::int64_t> first = image_offsets(points, options, threads);
-  const std::size_t before = id_of.size(), images = static_cast<std::size_t>(first.back());
+  const ImagePlan plan = plan_images(points, options, threads);
+  const std::size_t before = id_of.size(), images = plan.count();
   local.xyz.resize(local.xyz.size() + images * static_cast<std::size_t>(points.dims()));
   id_of.resize(before + images);
-  write_images(points, options, first, local.xyz.data() + before * static_cast<std::size_t>(points.dims()),
+  write_images(points, options, plan, local.xyz.data() + before * static_cast<std::size_t>(points.dims()),
                id_of.data() + before, id_base, threads);
 }
 
@@ -147,11 +195,11 @@ struct LocalPoints {
 /// The periodic images of `points` alone (ids: their originals' indices), the points checked
 /// against the box in the same pass.
 LocalPoints images_of(PointView points, const SearchOptions& options, int threads) {
-  const ScratchBuffer<std::int64_t> first = image_offsets(points, options, threads, true);
-  const auto count = static_cast<std::size_t>(first.back());
+  const ImagePlan plan = plan_images(points, options, threads, true);
+  const std::size_t count = plan.count();
   LocalPoints images{ScratchBuffer<double>(count * static_cast<std::size_t>(points.dims())),
                      ScratchBuffer<point_id>(count)};
-  write_images(points, options, first, images.xyz.data(), images.id_of.data(), 0, threads);
+  write_images(points, options, plan, images.xyz.data(), images.id_of.data(), 0, threads);
   return images;
 }
 
@@ -160,9 +208,8 @@ LocalPoints images_of(PointView points, const SearchOptions& options, int thread
 LocalPoints local_points(std::initializer_list<std::pair<PointView, point_id>> sets, const SearchOptions& options) {
   const PointView last = (sets.end() - 1)->first;
   const int dims = last.dims();
-  const ScratchBuffer<std::int64_t> first =
-      is_periodic(options) ? image_offsets(last, options, omp_get_max_threads()) : ScratchBuffer<std::int64_t>{0};
-  std::size_t total = static_cast<std::size_t>(first.back());
+  const ImagePlan plan = is_periodic(options) ? plan_images(last, options, omp_get_max_threads()) : ImagePlan{};
+  std::size_t total = plan.count();
   for (const auto& set : sets) total += set.first.size();
   if (total >= static_cast<std::size_t>(std::numeric_limits<point_id>::max()))
     throw Error("the points (queries, references and periodic images) must be fewer than 2^31 - 1");
@@ -180,7 +227,7 @@ LocalPoints local_points(std::initializer_list<std::pair<PointView, point_id>> s
     at += points.size();
   }
   if (is_periodic(options))
-    write_images(last, options, first, local.xyz.data() + at * static_cast<std::size_t>(dims), local.id_of.data() + at,
+    write_images(last, options, plan, local.xyz.data() + at * static_cast<std::size_t>(dims), local.id_of.data() + at,
                  (sets.end() - 1)->second, omp_get_max_threads());
   return local;
 }
