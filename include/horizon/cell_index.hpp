@@ -59,6 +59,10 @@ public:
   /// are skipped; rows come in ascending position order. Returns the number of ranges written.
   int stencil(std::size_t c, Range* out) const;
 
+  /// The part of that stencil in the columns of cells cx + first .. cx + last (-k <= first <=
+  /// last <= k), in the same order. Returns the number of ranges written.
+  int stencil_columns(std::size_t c, std::int64_t first, std::int64_t last, Range* out) const;
+
   /// The half of that stencil which comes after cell c in the sort, so that each pair of
   /// points is in the stencil of exactly one of their cells, or both in one cell: first the run
   /// of cells cx .. cx+k (cell c's own points first), then the rows (cy+dy, cz) for dy = 1..k
@@ -68,6 +72,8 @@ public:
   /// Coordinate of occupied cell c along the slowest axis of the sort (z in 3-D, y in 2-D): cells
   /// are sorted by it, and an upper stencil reaches layers layer(c) .. layer(c) + k.
   std::int64_t layer(std::size_t c) const { return cell_coord_[c][grid_.dims == 3 ? 0 : 1]; }
+  /// Coordinates (cz, cy, cx) of occupied cell c.
+  const std::array<std::int64_t, 3>& cell_coord(std::size_t c) const { return cell_coord_[c]; }
 
   /// Largest number of ranges stencil() can write: (2k+1)^(dims-1).
   int max_stencil_rows() const;

@@ -161,12 +161,17 @@ CellIndex::Range CellIndex::row(std::int64_t x_first, std::int64_t x_last, std::
 
 int CellIndex::stencil(std::size_t c, Range* out) const {
   const std::int64_t k = grid_.cells_per_horizon;
+  return stencil_columns(c, -k, k, out);
+}
+
+int CellIndex::stencil_columns(std::size_t c, std::int64_t first, std::int64_t last, Range* out) const {
+  const std::int64_t k = grid_.cells_per_horizon;
   const std::int64_t reach_z = grid_.dims == 3 ? k : 0;
   const auto [cz, cy, cx] = cell_coord_[c];
   int rows = 0;
   for (std::int64_t dz = -reach_z; dz <= reach_z; ++dz)
     for (std::int64_t dy = -k; dy <= k; ++dy) {
-      const Range r = row(cx - k, cx + k, cy + dy, cz + dz);
+      const Range r = row(cx + first, cx + last, cy + dy, cz + dz);
       if (r.end > r.begin) out[rows++] = r;
     }
   return rows;

@@ -113,7 +113,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
     // Sorted rows: from a stencil sorted once per cell when it is large; small rows (m = 1.5:
     // 80 candidates, 18 neighbours) sort faster one by one, in registers.
     const bool sorted_stencil = Fill && options.sort_rows && candidates >= 256;
-    if (sorted_stencil) sorted.gather(index, rows.data(), row_count);
+    if (sorted_stencil) sorted.gather(index, c);
     const auto [first, last] = index.rows_of(c);
     for (std::int64_t p = first; p < last; ++p) {
       const point_id self = order[p];

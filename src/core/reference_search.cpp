@@ -103,7 +103,7 @@ void plan_range(const T* xyz, const PeriodicBox& box, std::int64_t begin, std::i
     for (int a = 0; a < D; ++a) {  // no branch: a point near a face is rare, and unpredictable
       const double x = static_cast<double>(xyz[i * D + a]);
       images *= 1 + (x < below[a]) + (x >= above[a]);
-      inside &= !periodic[a] | ((x >= 0) & (x < box.period[a]));
+      inside &= (!periodic[a]) | ((x >= 0) & (x < box.period[a]));
     }
     if (!inside && i < outside) outside = i;
     if (images > 1) {

@@ -3,48 +3,121 @@
 #include <algorithm>
 #include <bit>
 #include <limits>
+#include <utility>
 
 namespace horizon::detail {
 
-void SortedStencil::gather(const CellIndex& index, const CellIndex::Range* rows, int row_count) {
+void SortedStencil::Points::resize(std::size_t count) {
+  ids.resize(count);
+  for (auto& axis : coords) axis.resize(count);
+  column.resize(count);
+}
+
+namespace {
+
+/// Marks entries [count, count + CellIndex::padding) of `ids` and `coords` as no point.
+void pad(std::vector<point_id>& ids, std::vector<double> (&coords)[3], std::size_t count) {
+  std::fill(ids.begin() + static_cast<std::ptrdiff_t>(count), ids.end(), -1);
+  for (auto& axis : coords)
+    std::fill(axis.begin() + static_cast<std::ptrdiff_t>(count), axis.end(), std::numeric_limits<double>::quiet_NaN());
+}
+
+}  // namespace
+
+std::size_t SortedStencil::gather_columns(const CellIndex& index, std::size_t c, std::int64_t first, std::int64_t last,
+                                          Points& out) {
   const point_id* order = index.order().data();
+  const std::int64_t cx = index.cell_coord(c)[2];
+  CellIndex::Range runs[49];  // (2k + 1)^2 rows of cells at most (k <= 3)
+  std::size_t column_end[7];   // where each column's keys end
   keys_.clear();
+  positions_.clear();
   point_id low = std::numeric_limits<point_id>::max(), high = 0;
-  for (int r = 0; r < row_count; ++r)
-    for (std::int64_t q = rows[r].begin; q < rows[r].end; ++q) {
-      low = std::min(low, order[q]);
-      high = std::max(high, order[q]);
-      keys_.push_back(static_cast<std::uint64_t>(order[q]) << 32 | static_cast<std::uint64_t>(q));
-    }
-  size_ = static_cast<std::int64_t>(keys_.size());
+  for (std::int64_t dx = first; dx <= last; ++dx) {
+    const int count = index.stencil_columns(c, dx, dx, runs);
+    for (int r = 0; r < count; ++r)
+      for (std::int64_t q = runs[r].begin; q < runs[r].end; ++q) {
+        low = std::min(low, order[q]);
+        high = std::max(high, order[q]);
+        keys_.push_back(static_cast<std::uint64_t>(order[q]) << 32 | positions_.size());
+        positions_.push_back(q);
+      }
+    column_end[dx - first] = positions_.size();
+  }
+  const std::size_t size = keys_.size();
 
   // Counting sort by the leading bits of id - low, about one key per bucket, then insertion
   // sort, which moves keys only within their bucket. Scalar merges of the cells' runs were
   // bound by the latency of each comparison (12 us per cell at m = 3.015, this project's Xeon).
-  const std::size_t buckets = std::bit_ceil(keys_.size());
+  const std::size_t buckets = std::bit_ceil(size);
   const int shift = std::max(0, static_cast<int>(std::bit_width(static_cast<std::uint32_t>(high - low))) -
                                    std::countr_zero(buckets));
   bucket_start_.assign(buckets + 1, 0);
   for (const std::uint64_t key : keys_) ++bucket_start_[((static_cast<std::uint32_t>(key >> 32) - low) >> shift) + 1];
   for (std::size_t b = 0; b < buckets; ++b) bucket_start_[b + 1] += bucket_start_[b];
-  merged_.resize(keys_.size());
+  merged_.resize(size);
   for (const std::uint64_t key : keys_)
     merged_[bucket_start_[(static_cast<std::uint32_t>(key >> 32) - low) >> shift]++] = key;
-  insertion_sort(merged_.data(), merged_.data() + merged_.size());
-  keys_.swap(merged_);
+  insertion_sort(merged_.data(), merged_.data() + size);
 
-  const auto padded = keys_.size() + CellIndex::padding;
-  for (auto& axis : coords_) axis.resize(padded, std::numeric_limits<double>::quiet_NaN());
-  ids_.resize(padded, -1);
-  for (std::size_t s = 0; s < keys_.size(); ++s) {
-    const auto q = static_cast<std::size_t>(keys_[s] & 0xffffffffu);
-    ids_[s] = static_cast<point_id>(keys_[s] >> 32);
-    for (int a = 0; a < 3; ++a) coords_[a][s] = index.coords(a)[q];
+  out.resize(size + CellIndex::padding);
+  for (std::size_t s = 0; s < size; ++s) {
+    const std::size_t at = merged_[s] & 0xffffffffu;
+    const auto q = static_cast<std::size_t>(positions_[at]);
+    out.ids[s] = static_cast<point_id>(merged_[s] >> 32);
+    for (int a = 0; a < 3; ++a) out.coords[a][s] = index.coords(a)[q];
+    std::int64_t column = cx + first;
+    for (std::int64_t d = 0; d < last - first; ++d) column += at >= column_end[d];
+    out.column[s] = column;
   }
-  for (std::size_t s = keys_.size(); s < padded; ++s) {
-    ids_[s] = -1;
-    for (auto& axis : coords_) axis[s] = std::numeric_limits<double>::quiet_NaN();
+  return size;
+}
+
+void SortedStencil::gather(const CellIndex& index, std::size_t c) {
+  const auto& cell = index.cell_coord(c);
+  const std::int64_t k = index.grid().cells_per_horizon;
+  if (!(gathered_ && cell[0] == cell_[0] && cell[1] == cell_[1] && cell[2] == cell_[2] + 1)) {
+    size_ = gather_columns(index, c, -k, k, stencil_);
+  } else {
+    // The last stencil less its first column, in place, then merged with the new last column.
+    const std::int64_t dropped = cell[2] - k - 1;
+    Points& a = stencil_;
+    std::size_t kept = 0;
+    for (std::size_t s = 0; s < size_; ++s) {
+      a.ids[kept] = a.ids[s];
+      for (auto& axis : a.coords) axis[kept] = axis[s];
+      a.column[kept] = a.column[s];
+      kept += a.column[s] != dropped;
+    }
+    const std::size_t added = gather_columns(index, c, k, k, added_);
+    const Points& b = added_;
+    Points& out = merged_points_;
+    out.resize(kept + added + CellIndex::padding);
+    std::size_t i = 0, j = 0, o = 0;
+    for (; i < kept && j < added; ++o) {  // without a branch on the comparison
+      const bool from_a = a.ids[i] < b.ids[j];
+      out.ids[o] = from_a ? a.ids[i] : b.ids[j];
+      for (int axis = 0; axis < 3; ++axis) out.coords[axis][o] = from_a ? a.coords[axis][i] : b.coords[axis][j];
+      out.column[o] = from_a ? a.column[i] : b.column[j];
+      i += from_a;
+      j += !from_a;
+    }
+    for (; i < kept; ++i, ++o) {
+      out.ids[o] = a.ids[i];
+      for (int axis = 0; axis < 3; ++axis) out.coords[axis][o] = a.coords[axis][i];
+      out.column[o] = a.column[i];
+    }
+    for (; j < added; ++j, ++o) {
+      out.ids[o] = b.ids[j];
+      for (int axis = 0; axis < 3; ++axis) out.coords[axis][o] = b.coords[axis][j];
+      out.column[o] = b.column[j];
+    }
+    std::swap(stencil_, merged_points_);
+    size_ = o;
   }
+  pad(stencil_.ids, stencil_.coords, size_);
+  gathered_ = true;
+  cell_ = cell;
 }
 
 }  // namespace horizon::detail

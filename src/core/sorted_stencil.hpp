@@ -1,7 +1,10 @@
 #pragma once
 // The points of one cell's stencil gathered into one array in ascending id order (structure of
 // arrays). Every family of the cell's points, found by scanning this array in order, comes out
-// sorted: no row is ever sorted. The cost is one sort per cell, shared by all its points.
+// sorted: no row is ever sorted. The cost is one sort per cell, shared by all its points, and
+// less when the cells come in order along x: the next cell's stencil is this one less its first
+// column of cells, merged with its new last column (a third of the points to sort, for k = 1).
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -22,20 +25,37 @@ void insertion_sort(T* first, T* last) {
 
 class SortedStencil {
 public:
-  /// Gathers the points of `rows` (a cell's stencil from CellIndex::stencil).
-  void gather(const CellIndex& index, const CellIndex::Range* rows, int row_count);
+  /// Gathers the points of occupied cell c's stencil (CellIndex::stencil): from the last one
+  /// gathered when that was the cell before c along x, else afresh.
+  void gather(const CellIndex& index, std::size_t c);
 
   /// Number of points; the arrays hold CellIndex::padding more (NaN coordinates, id -1).
-  std::int64_t size() const { return size_; }
-  const double* coords(int axis) const { return coords_[axis].data(); }
-  const point_id* ids() const { return ids_.data(); }
+  std::int64_t size() const { return static_cast<std::int64_t>(size_); }
+  const double* coords(int axis) const { return stencil_.coords[axis].data(); }
+  const point_id* ids() const { return stencil_.ids.data(); }
 
 private:
-  std::int64_t size_ = 0;
-  std::vector<std::uint64_t> keys_, merged_;  ///< id << 32 | sorted position
+  /// The points of one stencil (or of the column added to it): ids ascending, coordinates, and
+  /// the x coordinate of each point's cell; padded like the cell index.
+  struct Points {
+    std::vector<point_id> ids;
+    std::vector<double> coords[3];
+    std::vector<std::int64_t> column;
+    std::size_t size() const { return ids.size(); }
+    void resize(std::size_t count);
+  };
+
+  /// Columns cx + first .. cx + last of cell c's stencil into `out`, sorted by id; returns
+  /// their number of points.
+  std::size_t gather_columns(const CellIndex& index, std::size_t c, std::int64_t first, std::int64_t last, Points& out);
+
+  std::vector<std::uint64_t> keys_, merged_;  ///< id << 32 | index into positions_
+  std::vector<std::int64_t> positions_;       ///< sorted positions, column after column
   std::vector<std::uint32_t> bucket_start_;
-  std::vector<double> coords_[3];
-  std::vector<point_id> ids_;
+  Points stencil_, added_, merged_points_;
+  std::size_t size_ = 0;
+  bool gathered_ = false;
+  std::array<std::int64_t, 3> cell_{};  ///< (cz, cy, cx) of the stencil gathered last
 };
 
 }  // namespace horizon::detail
