@@ -14,7 +14,8 @@ class DeviceVerletList {
 public:
   /// Searches the `count` points at device `xyz` (AoS x y [z], float64) with `options` widened
   /// by `skin` > 0 on `stream` (of device options.device, which must be current), and keeps a
-  /// copy of the positions. Periodic boxes are not supported (throws).
+  /// copy of the positions and room for a refresh's work (a bit per candidate). Periodic boxes are not supported
+  /// (throws).
   DeviceVerletList(const double* xyz, std::size_t count, int dims, const SearchOptions& options, double skin,
                    cuda_stream stream = nullptr);
 
@@ -36,6 +37,10 @@ private:
   cuda_stream stream_ = nullptr;
   DeviceNeighborList candidates_;
   std::unique_ptr<double, DeviceNeighborList::Free> built_at_;  ///< the positions at the build
+  /// A refresh's row sizes, scan storage (from scan_at_) and verdicts, a bit per candidate
+  /// (from marks_at_): reused by every refresh (all on stream_).
+  std::unique_ptr<unsigned char, DeviceNeighborList::Free> workspace_;
+  std::size_t scan_at_ = 0, marks_at_ = 0;
 };
 
 }  // namespace horizon
