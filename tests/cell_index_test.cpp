@@ -1,10 +1,13 @@
 // The cell sort: the same index on any thread count, each cell's points ascending by input id;
-// periodic images after the rows of their cell, named by their originals.
+// periodic images after the rows of their cell, named by their originals. A cell's sorted
+// stencil slid from the cell before it equals the one gathered afresh.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/radix_sort.hpp"
+#include "core/sorted_stencil.hpp"
 #include "datasets.hpp"
 #include "horizon/cell_index.hpp"
 
@@ -66,6 +69,37 @@ TEST(CellIndex, ImagesHoldNoRowAndCarryTheirOriginalsIds) {
     EXPECT_EQ(rows, (std::vector<point_id>{0, 1, 2, 3, 4, 5}));
     EXPECT_EQ(images, (std::vector<point_id>{0, 1, 4}));
   }
+}
+
+TEST(SortedStencil, SlidingAlongXGathersWhatAFreshGatherDoes) {
+  std::size_t slid = 0;  // cells whose stencil was slid from the one before (the test must reach some)
+  for (const int dims : {2, 3})
+    for (auto& data : testing::datasets(dims))
+      for (const int k : {1, 2, 3})
+        for (const int skip : {0, 3}) {  // 3: every third cell not gathered, as small stencils are not
+          SCOPED_TRACE(data.name + " " + std::to_string(dims) + "-D k " + std::to_string(k) + " skip " +
+                       std::to_string(skip));
+          const CellIndex index(data.points.view(), Grid::fit(data.points.view(), data.horizon, k), 1);
+          detail::SortedStencil sliding;
+          std::array<std::int64_t, 3> last{0, 0, -2};  // the cell gathered last
+          for (std::size_t c = 0; c < index.occupied_cells(); ++c) {
+            if (skip && c % skip == 0) continue;
+            const auto& cell = index.cell_coord(c);
+            slid += cell[0] == last[0] && cell[1] == last[1] && cell[2] == last[2] + 1;
+            last = cell;
+            sliding.gather(index, c);
+            detail::SortedStencil fresh;
+            fresh.gather(index, c);
+            ASSERT_EQ(sliding.size(), fresh.size());
+            const auto n = static_cast<std::size_t>(fresh.size());
+            EXPECT_TRUE(std::equal(fresh.ids(), fresh.ids() + n + CellIndex::padding, sliding.ids()));
+            for (int axis = 0; axis < 3; ++axis) {
+              EXPECT_TRUE(std::equal(fresh.coords(axis), fresh.coords(axis) + n, sliding.coords(axis)));
+              for (std::size_t s = n; s < n + CellIndex::padding; ++s) EXPECT_TRUE(std::isnan(sliding.coords(axis)[s]));
+            }
+          }
+        }
+  EXPECT_GT(slid, 1000u);
 }
 
 TEST(RadixSort, SortsByTheHighWordKeepingTheLowWordsOrder) {
