@@ -13,16 +13,11 @@ void SortedStencil::Points::resize(std::size_t count) {
   column.resize(count);
 }
 
-namespace {
-
-/// Marks entries [count, count + CellIndex::padding) of `ids` and `coords` as no point.
-void pad(std::vector<point_id>& ids, std::vector<double> (&coords)[3], std::size_t count) {
+void SortedStencil::Points::pad(std::size_t count) {
   std::fill(ids.begin() + static_cast<std::ptrdiff_t>(count), ids.end(), -1);
   for (auto& axis : coords)
     std::fill(axis.begin() + static_cast<std::ptrdiff_t>(count), axis.end(), std::numeric_limits<double>::quiet_NaN());
 }
-
-}  // namespace
 
 std::size_t SortedStencil::gather_columns(const CellIndex& index, std::size_t c, std::int64_t first, std::int64_t last,
                                           Points& out) {
@@ -76,17 +71,21 @@ std::size_t SortedStencil::gather_columns(const CellIndex& index, std::size_t c,
 void SortedStencil::gather(const CellIndex& index, std::size_t c) {
   const auto& cell = index.cell_coord(c);
   const std::int64_t k = index.grid().cells_per_horizon;
-  if (!(gathered_ && cell[0] == cell_[0] && cell[1] == cell_[1] && cell[2] == cell_[2] + 1)) {
+  if (!(cell[0] == cell_[0] && cell[1] == cell_[1] && cell[2] == cell_[2] + 1)) {
     size_ = gather_columns(index, c, -k, k, stencil_);
   } else {
+    // Entry s of `from` becomes entry o of `to`.
+    const auto copy = [](const Points& from, std::size_t s, Points& to, std::size_t o) {
+      to.ids[o] = from.ids[s];
+      for (int axis = 0; axis < 3; ++axis) to.coords[axis][o] = from.coords[axis][s];
+      to.column[o] = from.column[s];
+    };
     // The last stencil less its first column, in place, then merged with the new last column.
     const std::int64_t dropped = cell[2] - k - 1;
     Points& a = stencil_;
     std::size_t kept = 0;
     for (std::size_t s = 0; s < size_; ++s) {
-      a.ids[kept] = a.ids[s];
-      for (auto& axis : a.coords) axis[kept] = axis[s];
-      a.column[kept] = a.column[s];
+      copy(a, s, a, kept);
       kept += a.column[s] != dropped;
     }
     const std::size_t added = gather_columns(index, c, k, k, added_);
@@ -102,21 +101,12 @@ void SortedStencil::gather(const CellIndex& index, std::size_t c) {
       i += from_a;
       j += !from_a;
     }
-    for (; i < kept; ++i, ++o) {
-      out.ids[o] = a.ids[i];
-      for (int axis = 0; axis < 3; ++axis) out.coords[axis][o] = a.coords[axis][i];
-      out.column[o] = a.column[i];
-    }
-    for (; j < added; ++j, ++o) {
-      out.ids[o] = b.ids[j];
-      for (int axis = 0; axis < 3; ++axis) out.coords[axis][o] = b.coords[axis][j];
-      out.column[o] = b.column[j];
-    }
+    for (; i < kept; ++i, ++o) copy(a, i, out, o);
+    for (; j < added; ++j, ++o) copy(b, j, out, o);
     std::swap(stencil_, merged_points_);
     size_ = o;
   }
-  pad(stencil_.ids, stencil_.coords, size_);
-  gathered_ = true;
+  stencil_.pad(size_);
   cell_ = cell;
 }
 

@@ -41,8 +41,9 @@ private:
     std::vector<point_id> ids;
     std::vector<double> coords[3];
     std::vector<std::int64_t> column;
-    std::size_t size() const { return ids.size(); }
     void resize(std::size_t count);
+    /// Marks every entry from `count` on as no point (id -1, NaN coordinates).
+    void pad(std::size_t count);
   };
 
   /// Columns cx + first .. cx + last of cell c's stencil into `out`, sorted by id; returns
@@ -54,8 +55,8 @@ private:
   std::vector<std::uint32_t> bucket_start_;
   Points stencil_, added_, merged_points_;
   std::size_t size_ = 0;
-  bool gathered_ = false;
-  std::array<std::int64_t, 3> cell_{};  ///< (cz, cy, cx) of the stencil gathered last
+  /// (cz, cy, cx) of the stencil gathered last; cell coordinates are >= 0, so none at first.
+  std::array<std::int64_t, 3> cell_{-1, -1, -1};
 };
 
 }  // namespace horizon::detail

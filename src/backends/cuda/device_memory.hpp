@@ -51,9 +51,10 @@ inline std::size_t pool_spare_bytes(cudaMemPool_t pool) {
 }
 
 /// Bytes to take from the pool for an array of `bytes`: from 32 MB up, rounded up to one of
-/// eight sizes per octave (not under a memory limit, which they could pass). A solver's next list is a little longer or shorter than the one it
-/// frees; asked for exactly, it may not fit the freed block, and the pool then maps fresh memory
-/// (4-5 ms for a 3.7 GB list on an H200, as long as a Verlet refresh's kernels).
+/// eight sizes per octave (DeviceArray does not round under a memory limit, which it could
+/// pass). A solver's next list is a little longer or shorter than the one it frees; asked for
+/// exactly, it may not fit the freed block, and the pool then maps fresh memory (4-5 ms for a
+/// 3.7 GB list on an H200, as long as a Verlet refresh's kernels).
 inline std::size_t pool_block_bytes(std::size_t bytes) {
   constexpr std::size_t rounded_from = std::size_t{32} << 20;
   if (bytes < rounded_from) return bytes;
