@@ -46,14 +46,15 @@ private:
     void pad(std::size_t count);
   };
 
-  /// Columns cx + first .. cx + last of cell c's stencil into `out`, sorted by id; returns
-  /// their number of points.
-  std::size_t gather_columns(const CellIndex& index, std::size_t c, std::int64_t first, std::int64_t last, Points& out);
+  /// Columns cx + first .. cx + last of cell c's stencil into `out` from entry `at` on, sorted
+  /// by id; returns their number of points.
+  std::size_t gather_columns(const CellIndex& index, std::size_t c, std::int64_t first, std::int64_t last, Points& out,
+                             std::size_t at);
 
   std::vector<std::uint64_t> keys_, merged_;  ///< id << 32 | index into positions_
   std::vector<std::int64_t> positions_;       ///< sorted positions, column after column
   std::vector<std::uint32_t> bucket_start_;
-  Points stencil_, added_, merged_points_;
+  Points stencil_, merged_points_;
   std::size_t size_ = 0;
   /// (cz, cy, cx) of the stencil gathered last; cell coordinates are >= 0, so none at first.
   std::array<std::int64_t, 3> cell_{-1, -1, -1};
