@@ -82,6 +82,10 @@ private:
   /// The run of sorted positions of cells x_first .. x_last of the row of cells (cy, cz).
   Range row(std::int64_t x_first, std::int64_t x_last, std::int64_t cy, std::int64_t cz) const;
 
+  /// The constructor's work, with coordinate(i, a) giving coordinate a of point i (the points,
+  /// then the images).
+  template <class Coordinate>
+  void build(const Coordinate& coordinate, int threads, Images images);
   template <class Coordinate>
   void sort_dense(const Coordinate& coordinate, int threads);
   template <class Coordinate>

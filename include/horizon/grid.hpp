@@ -22,6 +22,7 @@ struct Grid {
   int cells_per_horizon = 1;  ///< k: the stencil reaches k cells each way
   double horizon = 0;         ///< the largest horizon the grid serves
   double cell_side = 0;       ///< >= horizon / k (see fit())
+  double inverse_side = 0;    ///< 1 / cell_side: a cell coordinate is a product, not a division
   std::array<double, 3> origin{};       ///< lower corner of the bounding box
   std::array<std::int64_t, 3> cells{};  ///< cells along each axis, padding included (1 for z in 2-D)
   bool dense = true;  ///< a table with one entry per cell is O(N): index cells by linear id
@@ -42,7 +43,7 @@ struct Grid {
   /// Cell coordinate along `axis` of a point with coordinate x (padding included).
   std::int64_t cell_of(double x, int axis) const {
     // floor by truncation and a correction: std::floor is a library call in a portable x86 build
-    const double t = (x - origin[axis]) / cell_side;
+    const double t = (x - origin[axis]) * inverse_side;
     const auto truncated = static_cast<std::int64_t>(t);
     return truncated - (t < static_cast<double>(truncated)) + cells_per_horizon;
   }

@@ -18,14 +18,32 @@ std::array<std::int64_t, 3> cell_of_point(const Coordinate& coordinate, const Gr
   return c;
 }
 
+/// Coordinate `a` of point i of an index: the points (D coordinates of type T each) first, then
+/// the images. Typed, so that the loops over every point compile without a branch on the type
+/// (the serial cell sort took 15 ms for 10^6 points through PointView, Intel Xeon host).
+template <class T, int D>
+struct IndexPoints {
+  const T* xyz;
+  std::size_t rows;
+  PointView images;
+  double operator()(std::size_t i, int a) const {
+    return i < rows ? static_cast<double>(xyz[i * D + static_cast<std::size_t>(a)]) : images(i - rows, a);
+  }
+};
+
 }  // namespace
 
 CellIndex::CellIndex(PointView points, const Grid& grid, int threads, Images images)
     : grid_(grid), count_(points.size() + images.points.size()), rows_(points.size()) {
-  // Coordinate `a` of point i: the points first, then the images.
-  const auto coordinate = [&, rows = rows_](std::size_t i, int a) {
-    return i < rows ? points(i, a) : images.points(i - rows, a);
-  };
+  const bool single = points.is_float32(), flat = points.dims() == 2;
+  if (single && flat) build(IndexPoints<float, 2>{points.float32_data(), rows_, images.points}, threads, images);
+  if (single && !flat) build(IndexPoints<float, 3>{points.float32_data(), rows_, images.points}, threads, images);
+  if (!single && flat) build(IndexPoints<double, 2>{points.float64_data(), rows_, images.points}, threads, images);
+  if (!single && !flat) build(IndexPoints<double, 3>{points.float64_data(), rows_, images.points}, threads, images);
+}
+
+template <class Coordinate>
+void CellIndex::build(const Coordinate& coordinate, int threads, Images images) {
   // Written in full below; only the padding is set here (zeroing first cost a serial pass).
   order_.resize(count_ + padding);
   std::fill(order_.begin() + static_cast<std::ptrdiff_t>(count_), order_.end(), -1);
@@ -114,11 +132,18 @@ void CellIndex::sort_dense(const Coordinate& coordinate, int threads) {
   for (std::int64_t b = 0; b < blocks; ++b) {
     const auto [first, last] = block_cells(b);
     std::int64_t out = occupied[b];
+    // The cell's coordinates stepped along with it: a division per cell cost more than the rest.
+    const std::int64_t nx = grid_.cells[0], ny = grid_.cells[1];
+    std::int64_t cx = first % nx, cy = first / nx % ny, cz = first / (nx * ny);
     for (std::int64_t c = first; c < last; ++c) {
-      if (start[c + 1] == start[c]) continue;
-      cell_coord_[out] = {c / (grid_.cells[0] * grid_.cells[1]), c / grid_.cells[0] % grid_.cells[1],
-                          c % grid_.cells[0]};
-      cell_begin_[out++] = start[c];
+      if (start[c + 1] != start[c]) {
+        cell_coord_[out] = {cz, cy, cx};
+        cell_begin_[out++] = start[c];
+      }
+      if (++cx == nx) {
+        cx = 0;
+        if (++cy == ny) cy = 0, ++cz;
+      }
     }
   }
 }

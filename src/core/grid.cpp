@@ -62,11 +62,12 @@ Grid Grid::from_bounds(const Bounds& box, int dims, std::size_t count, double ho
   for (int a = 0; a < g.dims; ++a) extent = std::max(extent, hi[a] - lo[a]);
   if (!std::isfinite(extent)) throw Error("the extent of the points overflows a double");
 
-  // (x - origin) / side carries a rounding error below 2^-52 of extent/side cells per point;
-  // widening the side by 2^-49 of the extent keeps every pair closer than the horizon within
-  // k cells along each axis, however far the points lie from the origin.
+  // (x - origin) * (1 / side) carries three roundings, an error below 2^-51 of extent/side
+  // cells per point; widening the side by 2^-49 of the extent keeps every pair closer than the
+  // horizon within k cells along each axis, however far the points lie from the origin.
   const int k = cells_per_horizon;
   g.cell_side = (horizon + std::ldexp(extent, -49)) / k;
+  g.inverse_side = 1.0 / g.cell_side;
   g.origin = lo;
   for (int a = 0; a < 3; ++a) {
     if (a >= g.dims) {
