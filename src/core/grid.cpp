@@ -16,24 +16,40 @@ void validate_horizon(double horizon, int cells_per_horizon) {
     throw Error("cells per horizon must be 1, 2 or 3, got " + std::to_string(cells_per_horizon));
 }
 
-Bounds bounds_of(PointView points, int threads) {
-  Bounds box;
-  if (points.empty()) return box;
-  const auto n = static_cast<std::int64_t>(points.size());
-  const bool flat = points.dims() == 2;
-  double lx = points(0, 0), ly = points(0, 1), lz = flat ? 0 : points(0, 2);
+namespace {
+
+/// The bounding box of n points of D coordinates of type T (z = 0 in 2-D): typed, so the loop
+/// compiles without a branch on the type per coordinate.
+template <class T, int D>
+Bounds bounds_of(const T* xyz, std::int64_t n, int threads) {
+  auto at = [xyz](std::int64_t i, int a) { return a < D ? static_cast<double>(xyz[i * D + a]) : 0.0; };
+  double lx = at(0, 0), ly = at(0, 1), lz = at(0, 2);
   double hx = lx, hy = ly, hz = lz;
 #pragma omp parallel for num_threads(threads) if (threads > 1) \
     reduction(min : lx, ly, lz) reduction(max : hx, hy, hz)
   for (std::int64_t i = 0; i < n; ++i) {
-    const auto at = static_cast<std::size_t>(i);
-    const double x = points(at, 0), y = points(at, 1), z = flat ? 0 : points(at, 2);
+    const double x = at(i, 0), y = at(i, 1), z = at(i, 2);
     lx = std::min(lx, x), ly = std::min(ly, y), lz = std::min(lz, z);
     hx = std::max(hx, x), hy = std::max(hy, y), hz = std::max(hz, z);
   }
+  Bounds box;
   box.lo = {lx, ly, lz};
   box.hi = {hx, hy, hz};
   return box;
+}
+
+}  // namespace
+
+Bounds bounds_of(PointView points, int threads) {
+  if (points.empty()) return Bounds{};
+  const auto n = static_cast<std::int64_t>(points.size());
+  const bool flat = points.dims() == 2;
+  if (points.is_float32()) {
+    const float* xyz = points.float32_data();
+    return flat ? bounds_of<float, 2>(xyz, n, threads) : bounds_of<float, 3>(xyz, n, threads);
+  }
+  const double* xyz = points.float64_data();
+  return flat ? bounds_of<double, 2>(xyz, n, threads) : bounds_of<double, 3>(xyz, n, threads);
 }
 
 Grid Grid::fit(PointView points, PointView more, double horizon, int cells_per_horizon, int threads) {
