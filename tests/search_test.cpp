@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "datasets.hpp"
 #include "same_families.hpp"
@@ -157,6 +158,42 @@ TEST(Grid, HugeExtentStaysSparseAndSmall) {
   const NeighborList list = search(points.view(), options_for(1e-3));
   EXPECT_EQ(list.total(), 2);
   EXPECT_EQ(list.row_size(0), 0u);
+}
+
+// Cell coordinates are (x - origin) * (1 / side), three roundings: the side's widening by 2^-49
+// of the extent must keep every pair closer than the horizon within k cells, wherever the points
+// lie. The hardest pairs: the first point a few ulps from a cell's face, the second a few ulps
+// less than the horizon away. Without the widening some are k + 1 cells apart (the first one
+// found: a = 0.442, b = 0.443 less an ulp, horizon 0.001, k = 2, in the unit box).
+TEST(Grid, PairsInsideTheHorizonAreAtMostKCellsApartWhereverThePointsLie) {
+  std::mt19937_64 random(11);
+  auto ulps = [](double x, int n) {
+    for (int i = 0; i < std::abs(n); ++i) x = std::nextafter(x, n < 0 ? -HUGE_VAL : HUGE_VAL);
+    return x;
+  };
+  for (const double offset : {0.0, 0.1, 12345.678, -7e6, 1e9, -1e12})
+    for (const double extent : {1.0, 10.0, 1e4, 3.3e7})
+      for (const double horizon : {1e-3 * extent, 0.037 * extent, 0.37 * extent, 0.3015})
+        for (int k = 1; k <= 3; ++k) {
+          Bounds box;
+          box.lo = {offset, offset, offset};
+          box.hi = {offset + extent, offset + extent, offset + extent};
+          const Grid grid = Grid::from_bounds(box, 3, 2, horizon, k);
+          const auto faces = static_cast<std::uint64_t>(extent / grid.cell_side);
+          if (faces < 2) continue;
+          for (int trial = 0; trial < 300; ++trial) {
+            const double face = offset + static_cast<double>(random() % faces) * grid.cell_side;
+            for (int from_face = -6; from_face <= 6; ++from_face) {
+              const double a = ulps(face, from_face);
+              for (int short_of = 1; short_of <= 8; ++short_of) {
+                const double b = ulps(a + horizon, -short_of);
+                if (!(b - a < horizon)) continue;
+                ASSERT_LE(grid.cell_of(b, 0) - grid.cell_of(a, 0), k)
+                    << "a " << a << " b " << b << " horizon " << horizon << " k " << k;
+              }
+            }
+          }
+        }
 }
 
 TEST(Errors, BadInputIsNamed) {
