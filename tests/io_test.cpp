@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -115,6 +116,21 @@ TEST_F(IoTest, MalformedNpy) {
   h += '\n';
   const auto f32 = read_points(write("f32.npy", magic + std::string(1, static_cast<char>(h.size())) + std::string(1, '\0') + h + values));
   EXPECT_EQ(f32.xyz, (std::vector<double>{1, 3, 2, 4}));
+  // A non-finite coordinate is named by its point, float64 (read straight into the points) and
+  // float32 alike.
+  for (const bool single : {false, true}) {
+    std::string data;
+    for (int e = 0; e < 9; ++e) {
+      const double x = e == 5 ? HUGE_VAL : e;
+      const float f = static_cast<float>(x);
+      data += single ? std::string(reinterpret_cast<const char*>(&f), 4) : std::string(reinterpret_cast<const char*>(&x), 8);
+    }
+    const std::string file = npy(single ? "inf4.npy" : "inf8.npy",
+                                 single ? "{'descr': '<f4', 'fortran_order': False, 'shape': (3, 3), }"
+                                        : "{'descr': '<f8', 'fortran_order': False, 'shape': (3, 3), }", 0);
+    std::ofstream(file, std::ios::app | std::ios::binary) << data;
+    EXPECT_NE(read_error(file).find("point 1 has a non-finite coordinate"), std::string::npos) << read_error(file);
+  }
 }
 
 TEST_F(IoTest, ListRoundTripsInBothFormats) {

@@ -44,8 +44,10 @@ Buffer<std::int64_t> integer_values(const NpyArray& array) {
   return out;
 }
 
-NpyArray read_npy(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
+NpyFile open_npy(const std::string& path) {
+  NpyFile file;
+  std::ifstream& in = file.in;
+  in.open(path, std::ios::binary);
   if (!in) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
   char preamble[8];
   if (!in.read(preamble, 8) || std::memcmp(preamble, "\x93NUMPY", 6) != 0)
@@ -75,7 +77,7 @@ NpyArray read_npy(const std::string& path) {
   std::string header(header_length, '\0');
   if (!in.read(header.data(), header_length)) throw Error(path + ": truncated .npy header");
 
-  NpyArray array;
+  NpyArray& array = file.array;
   const std::string descr = header_field(header, "descr", path);
   const std::string type = descr.substr(1, descr.size() - 2);  // drop quotes
   if (type.size() == 3 && type[0] == '>')
@@ -83,7 +85,7 @@ NpyArray read_npy(const std::string& path) {
   if (type != "<f8" && type != "<f4" && type != "<i4" && type != "<i8")
     throw Error(path + ": unsupported dtype " + descr + " (expected float64, float32, int32 or int64)");
   array.type = type.substr(1);
-  const bool fortran = header_field(header, "fortran_order", path) == "True";
+  file.fortran = header_field(header, "fortran_order", path) == "True";
   const std::string shape = header_field(header, "shape", path);
   const std::regex number("\\d+");
   for (auto it = std::sregex_iterator(shape.begin(), shape.end(), number); it != std::sregex_iterator(); ++it) {
@@ -104,10 +106,18 @@ NpyArray read_npy(const std::string& path) {
   if (needed > available)
     throw Error(path + ": the header's shape " + shape + " of " + descr + " needs " + std::to_string(needed) +
                 " bytes of data, the file holds " + std::to_string(available) + " (truncated or corrupt)");
-  std::vector<char> raw(needed);
-  if (!in.read(raw.data(), static_cast<std::streamsize>(raw.size())))
+  file.bytes = needed;
+  return file;
+}
+
+NpyArray read_npy(const std::string& path) {
+  NpyFile file = open_npy(path);
+  NpyArray& array = file.array;
+  const std::size_t size = item_size(array.type);
+  std::vector<char> raw(file.bytes);
+  if (!file.in.read(raw.data(), static_cast<std::streamsize>(raw.size())))
     throw Error(path + ": truncated .npy data (expected " + std::to_string(raw.size()) + " bytes)");
-  if (fortran && array.shape.size() == 2) {
+  if (file.fortran && array.shape.size() == 2) {
     // Column-major on disk: transpose to C order.
     const std::size_t rows = array.shape[0], cols = array.shape[1];
     array.bytes.resize(raw.size());
@@ -117,7 +127,7 @@ NpyArray read_npy(const std::string& path) {
   } else {
     array.bytes = std::move(raw);
   }
-  return array;
+  return std::move(array);
 }
 
 std::string npy_header(const std::string& type, const std::vector<std::size_t>& shape) {
