@@ -66,9 +66,11 @@ void CellIndex::build(const Coordinate& coordinate, int threads, Images images) 
     cell_rows_end_.resize(static_cast<std::size_t>(cells));
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
     for (std::int64_t c = 0; c < cells; ++c) {
-      const point_id* first = order_.data() + cell_begin_[c];
-      const point_id* last = order_.data() + cell_begin_[c + 1];
-      cell_rows_end_[c] = std::lower_bound(first, last, rows) - order_.data();
+      // Back from the cell's end over its images: most cells hold none, so this is one
+      // predictable test where a binary search mispredicted (3 % of a periodic search).
+      std::int64_t end = cell_begin_[c + 1];
+      while (end > cell_begin_[c] && order_[static_cast<std::size_t>(end - 1)] >= rows) --end;
+      cell_rows_end_[c] = end;
     }
   }
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
