@@ -67,6 +67,8 @@ void validate(PointView points);
 namespace detail {
 /// validate() on `threads` cores (0: all).
 void validate_points(PointView points, int threads);
+/// validate_points' test of the coordinates alone: throws naming the first non-finite one.
+void check_finite(PointView points, int threads);
 }  // namespace detail
 
 /// Copies `points` (as doubles) into `into` from point `at` on (`into` holds room for them).

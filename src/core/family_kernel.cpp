@@ -95,7 +95,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
 
   for (std::size_t c = run.first; c < run.last; ++c) {
     // A cell of periodic images only (the shell outside the box) has no rows: no stencil to list.
-    if (index.rows_of(c).begin == index.rows_of(c).end) continue;
+    if (const CellIndex::Range own = index.rows_of(c); own.begin == own.end) continue;
     if constexpr (Fill)
       if (!all_rows) {
         const auto [first, last] = index.rows_of(c);

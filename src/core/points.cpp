@@ -55,6 +55,10 @@ void detail::validate_points(PointView points, int threads) {
     throw Error("points must have 2 or 3 coordinates, not " + std::to_string(points.dims()));
   if (points.size() > static_cast<std::size_t>(std::numeric_limits<point_id>::max()))
     throw Error(std::to_string(points.size()) + " points: at most 2^31-1 per search");
+  check_finite(points, threads);
+}
+
+void detail::check_finite(PointView points, int threads) {
   // Pieces tested on all cores (1.5 GB of coordinates at memory speed); the first bad piece
   // is then searched for its first bad value.
   constexpr std::size_t piece = std::size_t{1} << 16;

@@ -110,8 +110,9 @@ NpyFile open_npy(const std::string& path) {
   return file;
 }
 
-NpyArray read_npy(const std::string& path) {
-  NpyFile file = open_npy(path);
+NpyArray read_npy(const std::string& path) { return read_npy(open_npy(path), path); }
+
+NpyArray read_npy(NpyFile file, const std::string& path) {
   NpyArray& array = file.array;
   const std::size_t size = item_size(array.type);
   std::vector<char> raw(file.bytes);

@@ -34,6 +34,8 @@ NpyFile open_npy(const std::string& path);
 
 /// The whole array in C order (errors as open_npy's).
 NpyArray read_npy(const std::string& path);
+/// The rest of an opened file's array, in C order.
+NpyArray read_npy(NpyFile file, const std::string& path);
 
 /// The bytes before the data of a version 1.0 .npy file of this dtype and shape (a multiple of 64).
 std::string npy_header(const std::string& type, const std::vector<std::size_t>& shape);

@@ -1,5 +1,3 @@
-#include <algorithm>
-#include <bit>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -18,19 +16,6 @@ namespace {
 
 bool ends_with(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
-}
-
-/// Throws, naming the file and the point, unless every coordinate is finite: one pass on all
-/// cores that the compiler vectorises, then a search for the first bad point only when one is.
-void check_finite(const std::string& path, const std::vector<double>& xyz, int dims) {
-  const auto n = static_cast<std::int64_t>(xyz.size());
-  std::uint64_t bad = 0;
-#pragma omp parallel for reduction(| : bad) if (n > (1 << 16))
-  for (std::int64_t e = 0; e < n; ++e)
-    bad |= static_cast<std::uint64_t>((std::bit_cast<std::uint64_t>(xyz[static_cast<std::size_t>(e)]) >> 52 & 0x7ff) == 0x7ff);
-  if (!bad) return;
-  const auto first = std::find_if(xyz.begin(), xyz.end(), [](double x) { return !std::isfinite(x); }) - xyz.begin();
-  throw Error(path + ": point " + std::to_string(first / dims) + " has a non-finite coordinate");
 }
 
 PointSet points_from_npy(const std::string& path) {
@@ -52,8 +37,7 @@ PointSet points_from_npy(const std::string& path) {
     if (!file.in.read(reinterpret_cast<char*>(xyz.data()), static_cast<std::streamsize>(file.bytes)))
       throw Error(path + ": truncated .npy data (expected " + std::to_string(file.bytes) + " bytes)");
   } else {
-    file.in.close();
-    const detail::NpyArray array = detail::read_npy(path);  // float32, or Fortran order
+    const detail::NpyArray array = detail::read_npy(std::move(file), path);  // float32, or Fortran order
     xyz.resize(array.elements());
     for (std::size_t e = 0; e < xyz.size(); ++e) {
       if (array.type == "f8") {
@@ -65,7 +49,11 @@ PointSet points_from_npy(const std::string& path) {
       }
     }
   }
-  check_finite(path, xyz, dims);
+  try {  // on all cores, vectorised; the first bad point named
+    detail::check_finite(PointView(xyz.data(), xyz.size() / static_cast<std::size_t>(dims), dims), 0);
+  } catch (const Error& e) {
+    throw Error(path + ": " + e.what());
+  }
   return PointSet{dims, std::move(xyz)};
 }
 
