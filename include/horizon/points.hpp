@@ -67,6 +67,8 @@ void validate(PointView points);
 namespace detail {
 /// validate() on `threads` cores (0: all).
 void validate_points(PointView points, int threads);
+/// validate_points less the test of the coordinates: 2 or 3 dimensions, fewer than 2^31 points.
+void validate_point_shape(PointView points);
 /// validate_points' test of the coordinates alone: throws naming the first non-finite one.
 void check_finite(PointView points, int threads);
 }  // namespace detail

@@ -50,11 +50,15 @@ bool any_non_finite(PointView points, std::size_t begin, std::size_t end) {
 
 }  // namespace
 
-void detail::validate_points(PointView points, int threads) {
+void detail::validate_point_shape(PointView points) {
   if (points.dims() != 2 && points.dims() != 3)
     throw Error("points must have 2 or 3 coordinates, not " + std::to_string(points.dims()));
   if (points.size() > static_cast<std::size_t>(std::numeric_limits<point_id>::max()))
     throw Error(std::to_string(points.size()) + " points: at most 2^31-1 per search");
+}
+
+void detail::validate_points(PointView points, int threads) {
+  validate_point_shape(points);
   check_finite(points, threads);
 }
 

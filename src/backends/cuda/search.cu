@@ -337,6 +337,28 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+/// Index into xyz of the first coordinate that is NaN or infinite: lowered by each such one.
+__global__ void first_non_finite(const double* xyz, std::size_t values, unsigned long long* first) {
+  const std::size_t stride = static_cast<std::size_t>(gridDim.x) * blockDim.x;
+  for (std::size_t i = static_cast<std::size_t>(blockIdx.x) * blockDim.x + threadIdx.x; i < values; i += stride)
+    if (!isfinite(xyz[i])) atomicMin(first, static_cast<unsigned long long>(i));
+}
+
+/// Throws as validate() does when an uploaded coordinate is NaN or infinite: tested on the GPU
+/// (microseconds), where the host would read every point again; the host then names it.
+void check_finite_on_device(const double* xyz, PointView points, cudaStream_t stream, MemoryMeter& meter) {
+  const std::size_t values = points.size() * static_cast<std::size_t>(points.dims());
+  if (values == 0) return;
+  DeviceArray<unsigned long long> first(1, meter);
+  HORIZON_CUDA_CHECK(cudaMemsetAsync(first.get(), 0xff, sizeof(unsigned long long), stream));
+  first_non_finite<<<std::min(blocks_for(values), 4096u), block_size, 0, stream>>>(xyz, values, first.get());
+  check_launch("first_non_finite");
+  unsigned long long found = 0;
+  HORIZON_CUDA_CHECK(cudaMemcpyAsync(&found, first.get(), sizeof(found), cudaMemcpyDeviceToHost, stream));
+  HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
+  if (found != ~0ull) check_finite(points, 0);  // throws, naming the first
+}
+
 }  // namespace
 
 bool cuda_usable() {
@@ -360,6 +382,7 @@ NeighborList search_cuda(PointView points, const SearchOptions& options, SearchS
   auto clock = std::chrono::steady_clock::now();
   DeviceArray<double> xyz(n * static_cast<std::size_t>(dims), meter);
   upload_coordinates(xyz.get(), points, stream);
+  check_finite_on_device(xyz.get(), points, stream, meter);
   stats.host_to_device_seconds = seconds_since(clock);
 
   // A periodic box: the points checked against it, their images made beside them, each found
@@ -378,15 +401,12 @@ NeighborList search_cuda(PointView points, const SearchOptions& options, SearchS
 
   auto kernels = std::chrono::steady_clock::now();
   const Counts counts = count_offsets(index, options, n, stream, meter);
+  check_list_fits(counts.total, options);
   double copy_seconds = 0;
-  auto copy_start = std::chrono::steady_clock::now();
   Buffer<std::int64_t> host_offsets(n + 1);
   advise_huge_pages(host_offsets.data(), counts.offsets.bytes());
-  copy_to_host(host_offsets.data(), counts.offsets.get(), counts.offsets.bytes(), stream);
-  check_list_fits(counts.total, options);
   Buffer<point_id> indices(static_cast<std::size_t>(counts.total));
   advise_huge_pages(indices.data(), indices.size() * sizeof(point_id));
-  copy_seconds += seconds_since(copy_start);
 
   // Batches of rows sized to what is free: the list (twice when rows need the segmented sort).
   const std::size_t available = available_device_bytes(meter);
@@ -394,6 +414,29 @@ NeighborList search_cuda(PointView points, const SearchOptions& options, SearchS
   const std::size_t usable = available > 2 * reserve ? available - reserve : available / 2;
   const std::int64_t fits = std::max<std::int64_t>(1, static_cast<std::int64_t>(usable / (3 * sizeof(point_id))));
   const std::int64_t batch_entries = options.gpu_batch_entries > 0 ? std::min(fits, options.gpu_batch_entries) : fits;
+  if (counts.total <= batch_entries) {
+    // One batch: filled while the offsets come back on a second stream (the count pass is
+    // done), then copied back. Lattice 400, m = 1.5: the 512 MB of offsets take ~10 ms.
+    DeviceArray<point_id> rows(static_cast<std::size_t>(counts.total), meter);
+    DeviceArray<point_id> spare(needs_spare(options, counts) ? static_cast<std::size_t>(counts.total) : 0, meter);
+    const point_id* result = fill_rows(index, options, counts, 0, counts.total, 0, static_cast<point_id>(n), rows.get(),
+                                       spare.get(), stream, meter);
+    const auto copy_start = std::chrono::steady_clock::now();
+    {
+      const StreamLease side(options.device);
+      copy_to_host(host_offsets.data(), counts.offsets.get(), counts.offsets.bytes(), side.get());
+    }
+    copy_to_host(indices.data(), result, static_cast<std::size_t>(counts.total) * sizeof(point_id), stream);
+    copy_seconds = seconds_since(copy_start);
+    stats.device_to_host_seconds = copy_seconds;
+    stats.kernel_seconds = seconds_since(kernels) - copy_seconds;
+    stats.search_seconds = stats.kernel_seconds + copy_seconds;
+    stats.peak_gpu_bytes = meter.peak;
+    return NeighborList(std::move(host_offsets), std::move(indices), options.half);
+  }
+  auto copy_start = std::chrono::steady_clock::now();
+  copy_to_host(host_offsets.data(), counts.offsets.get(), counts.offsets.bytes(), stream);
+  copy_seconds += seconds_since(copy_start);
   for (std::size_t first = 0; first < n;) {
     // Rows up to the batch's size (a single larger row still goes alone).
     const std::int64_t limit = host_offsets[first] + batch_entries;
