@@ -6,7 +6,6 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
-#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -15,7 +14,6 @@
 #include "same_families.hpp"
 #include "horizon/cuda.hpp"
 #include "horizon/device_verlet_list.hpp"
-#include "horizon/error.hpp"
 #include "horizon/generate.hpp"
 #include "horizon/oracle.hpp"
 #include "horizon/search.hpp"
@@ -42,33 +40,6 @@ SearchOptions options_for(double horizon, Backend backend) {
   options.horizon = horizon;
   options.backend = backend;
   return options;
-}
-
-// One GPU tests the coordinates once uploaded (the host does not read them again): the error
-// still names the first bad point, for doubles and floats, in an open and a periodic box.
-TEST(Cuda, NamesTheFirstNonFinitePoint) {
-  REQUIRE_GPU();
-  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
-  for (double bad : {nan, inf, -inf})
-    for (std::size_t at : {std::size_t{0}, std::size_t{70000}, std::size_t{399999}}) {
-      PointSet points = random_cloud(400000, 3, 1);
-      points.xyz[at * 3 + 2] = bad;
-      if (at > 0) points.xyz[(at + 1 < 400000 ? at + 1 : at) * 3] = bad;  // a later one is not named
-      const std::vector<float> single(points.xyz.begin(), points.xyz.end());
-      const std::string expected = "point " + std::to_string(at) + " has a non-finite coordinate";
-      for (const bool periodic : {false, true}) {
-        SearchOptions options = options_for(0.1, Backend::cuda);
-        if (periodic) options.box = {10, 10, 10};
-        for (const PointView view : {points.view(), PointView(single.data(), 400000, 3)}) {
-          try {
-            search(view, options);
-            ADD_FAILURE() << "accepted a non-finite coordinate at point " << at;
-          } catch (const Error& e) {
-            EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
-          }
-        }
-      }
-    }
 }
 
 TEST(Cuda, BatchedHostSearchEqualsSerial) {
