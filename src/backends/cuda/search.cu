@@ -428,30 +428,26 @@ NeighborList search_cuda(PointView points, const SearchOptions& options, SearchS
     }
     copy_to_host(indices.data(), result, static_cast<std::size_t>(counts.total) * sizeof(point_id), stream);
     copy_seconds = seconds_since(copy_start);
-    stats.device_to_host_seconds = copy_seconds;
-    stats.kernel_seconds = seconds_since(kernels) - copy_seconds;
-    stats.search_seconds = stats.kernel_seconds + copy_seconds;
-    stats.peak_gpu_bytes = meter.peak;
-    return NeighborList(std::move(host_offsets), std::move(indices), options.half);
-  }
-  auto copy_start = std::chrono::steady_clock::now();
-  copy_to_host(host_offsets.data(), counts.offsets.get(), counts.offsets.bytes(), stream);
-  copy_seconds += seconds_since(copy_start);
-  for (std::size_t first = 0; first < n;) {
-    // Rows up to the batch's size (a single larger row still goes alone).
-    const std::int64_t limit = host_offsets[first] + batch_entries;
-    std::size_t last = static_cast<std::size_t>(std::upper_bound(host_offsets.begin() + first + 1, host_offsets.end(), limit) -
-                                                host_offsets.begin()) - 1;
-    last = std::max(last, first + 1);
-    const std::int64_t base = host_offsets[first], entries = host_offsets[last] - base;
-    DeviceArray<point_id> rows(static_cast<std::size_t>(entries), meter);
-    DeviceArray<point_id> spare(needs_spare(options, counts) ? static_cast<std::size_t>(entries) : 0, meter);
-    const point_id* result = fill_rows(index, options, counts, base, entries, static_cast<point_id>(first),
-                                       static_cast<point_id>(last), rows.get(), spare.get(), stream, meter);
-    copy_start = std::chrono::steady_clock::now();
-    copy_to_host(indices.data() + base, result, static_cast<std::size_t>(entries) * sizeof(point_id), stream);
+  } else {
+    auto copy_start = std::chrono::steady_clock::now();
+    copy_to_host(host_offsets.data(), counts.offsets.get(), counts.offsets.bytes(), stream);
     copy_seconds += seconds_since(copy_start);
-    first = last;
+    for (std::size_t first = 0; first < n;) {
+      // Rows up to the batch's size (a single larger row still goes alone).
+      const std::int64_t limit = host_offsets[first] + batch_entries;
+      std::size_t last = static_cast<std::size_t>(std::upper_bound(host_offsets.begin() + first + 1, host_offsets.end(), limit) -
+                                                  host_offsets.begin()) - 1;
+      last = std::max(last, first + 1);
+      const std::int64_t base = host_offsets[first], entries = host_offsets[last] - base;
+      DeviceArray<point_id> rows(static_cast<std::size_t>(entries), meter);
+      DeviceArray<point_id> spare(needs_spare(options, counts) ? static_cast<std::size_t>(entries) : 0, meter);
+      const point_id* result = fill_rows(index, options, counts, base, entries, static_cast<point_id>(first),
+                                         static_cast<point_id>(last), rows.get(), spare.get(), stream, meter);
+      copy_start = std::chrono::steady_clock::now();
+      copy_to_host(indices.data() + base, result, static_cast<std::size_t>(entries) * sizeof(point_id), stream);
+      copy_seconds += seconds_since(copy_start);
+      first = last;
+    }
   }
   stats.device_to_host_seconds = copy_seconds;
   stats.kernel_seconds = seconds_since(kernels) - copy_seconds;
