@@ -58,12 +58,13 @@ NeighborList search(PointView points, const SearchOptions& options, SearchStats*
                                                    : Backend::serial;
   // One GPU checks the coordinates' values once they are uploaded (search_cuda): here they
   // would all be read once more, 3-5 ms of a 25 ms host->host search (lattice 200, H200).
-  const bool checked_on_gpu = backend == Backend::cuda && options.devices.size() <= 1 && backend_available(backend);
+  const bool available = backend_available(backend);
+  const bool checked_on_gpu = available && backend == Backend::cuda && options.devices.size() <= 1;
   detail::validate_search(points, options, !checked_on_gpu);
   SearchStats local;
   SearchStats& out = stats ? *stats : local;
   out = SearchStats{};
-  if (!backend_available(backend))
+  if (!available)
     throw Error(std::string("backend '") + backend_name(backend) + "' is not available here");
   out.backend = backend;
   if (!options.devices.empty() && backend != Backend::cuda)
