@@ -39,10 +39,10 @@ PointSet points_from_npy(const std::string& path) {
   } else {
     const detail::NpyArray array = detail::read_npy(std::move(file), path);  // float32, or Fortran order
     xyz.resize(array.elements());
-    if (array.type == "f8") {
-      std::memcpy(xyz.data(), array.bytes.data(), xyz.size() * sizeof(double));
-    } else {
-      for (std::size_t e = 0; e < xyz.size(); ++e) {
+    for (std::size_t e = 0; e < xyz.size(); ++e) {
+      if (array.type == "f8") {
+        std::memcpy(&xyz[e], &array.bytes[e * 8], 8);
+      } else {
         float f;
         std::memcpy(&f, &array.bytes[e * 4], 4);
         xyz[e] = f;
