@@ -12,7 +12,7 @@ np.save("/tmp/blob.npy", np.vstack([blob, spread]))
 np.save("/tmp/plane.npy", 10.0 * rng.random((20000, 2)))
 PY
 cli="$BUILD/bin/horizon search"
-cases=("lattice:20 --horizon 0.75" "lattice:20 --horizon 1.5 --half" "lattice:16 --horizon 2.2 --cells-per-horizon 2"
+cases=("lattice:20 --horizon 0.75" "lattice:20 --horizon 1.5 --half" "lattice:20 --horizon 3.015" "lattice:16 --horizon 2.2 --cells-per-horizon 2"
        "lattice:12 --horizon 2.5 --metric l1 --cells-per-horizon 3" "/tmp/blob.npy --horizon 0.5"
        "/tmp/blob.npy --horizon 0.5 --half" "/tmp/plane.npy --horizon 0.2" "/tmp/plane.npy --horizon 0.4 --half")
 for tool in memcheck racecheck initcheck; do

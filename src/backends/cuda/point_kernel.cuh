@@ -60,6 +60,59 @@ __device__ int walk_stencil(const DeviceIndexView& ix, std::int64_t p, point_id 
   return stencil;
 }
 
+/// Candidates the full-list count tests per iteration: their loads and tests are independent,
+/// and the loop's bookkeeping (bounds, the word of verdicts) is paid once per group.
+constexpr int count_group = 4;
+
+/// The count pass's walk for full lists: every candidate of the stencil tested, the point itself
+/// too (it is where it is: d = 0), whose verdict is taken out after the walk, so no candidate is
+/// compared with the point's own position or id. Returns the stencil's size; sets `found` and,
+/// when Bits, the hit bits at `words` (hit_bits.cuh).
+template <Metric M, int D, bool Bits>
+__device__ int count_stencil(const DeviceIndexView& ix, std::int64_t p, double threshold, int& found,
+                             unsigned* words) {
+  const double xi = ix.x[p], yi = ix.y[p], zi = ix.z[p];
+  const std::int64_t cx = ix.grid.cell_of(xi, 0), cy = ix.grid.cell_of(yi, 1);
+  const std::int64_t cz = D == 3 ? ix.grid.cell_of(zi, 2) : 0;
+  const int k = ix.grid.k, reach_z = D == 3 ? k : 0;
+  int stencil = 0, own = 0;  // own: the point's index in its stencil
+  unsigned word = 0;         // the verdicts of the word being filled
+  found = 0;
+  for (int dz = -reach_z; dz <= reach_z; ++dz)
+    for (int dy = -k; dy <= k; ++dy) {
+      std::int64_t begin, end;
+      ix.row(cx, cy + dy, cz + dz, begin, end);
+      if (dz == 0 && dy == 0) own = stencil + static_cast<int>(p - begin);
+      const double *x = ix.x + begin, *y = ix.y + begin, *z = ix.z + begin;
+      const int length = static_cast<int>(end - begin);
+      for (int j = 0; j < length; j += count_group) {
+        unsigned group = 0;  // bit u: the verdict of candidate j + u
+#pragma unroll
+        for (int u = 0; u < count_group; ++u)
+          if (u == 0 || j + u < length) {
+            const double d = metric_accumulate<M>(xi - x[j + u], yi - y[j + u], D == 3 ? zi - z[j + u] : 0.0);
+            group |= static_cast<unsigned>(d < threshold) << u;
+          }
+        found += __popc(group);
+        const int taken = min(count_group, length - j), used = stencil & 31;  // used: bits of `word` filled
+        if (Bits) {
+          word |= group << used;
+          if (used + taken >= 32) {  // the word is full (so used >= 32 - count_group > 0)
+            words[stencil >> 5] = word;
+            word = group >> (32 - used);
+          }
+        }
+        stencil += taken;
+      }
+    }
+  if (Bits) {
+    if (stencil & 31) words[stencil >> 5] = word;
+    words[own >> 5] &= ~(1u << (own & 31));
+  }
+  if (0.0 < threshold) --found;  // the point's own verdict (0 < horizon^2 unless it underflows)
+  return stencil;
+}
+
 /// Count pass: counts[id] = |family| of every point, the widest stencil of the queries, the
 /// number of rows longer than staged_row and, when a.bits is set, every point's hit bits.
 template <Metric M, int D, bool Half>
@@ -73,8 +126,13 @@ __global__ void __launch_bounds__(block_size) count_families(DeviceIndexView ix,
     int found = 0;
     if (self < ix.queries) {
       unsigned* words = a.bits ? a.bits + a.bit_offsets[p] : nullptr;
-      const int stencil =
-          walk_stencil<M, D, Half>(ix, p, self, a.threshold, [&](point_id) { ++found; }, words);
+      int stencil;
+      if constexpr (Half)
+        stencil = walk_stencil<M, D, Half>(ix, p, self, a.threshold, [&](point_id) { ++found; }, words);
+      else if (words)
+        stencil = count_stencil<M, D, true>(ix, p, a.threshold, found, words);
+      else
+        stencil = count_stencil<M, D, false>(ix, p, a.threshold, found, nullptr);
       atomicMax(&widest, static_cast<unsigned long long>(stencil));
       if (found > staged_row) atomicAdd(&long_rows, 1ull);
     }
