@@ -200,7 +200,9 @@ __global__ void __launch_bounds__(staged_block(Rows)) fill_short_rows(DeviceInde
   for (int owner = 0; owner < 32; ++owner) {
     const int length = __shfl_sync(0xffffffffu, found, owner);
     const std::int64_t at = __shfl_sync(0xffffffffu, start, owner);
-    for (int j = lane; j < length; j += 32) a.out[at + j] = rows[j * pitch + owner];
+#pragma unroll
+    for (int j0 = 0; j0 < Rows; j0 += 32)  // length <= Rows: a fixed count of stores, no loop
+      if (j0 + lane < length) a.out[at + j0 + lane] = rows[(j0 + lane) * pitch + owner];
   }
 }
 
