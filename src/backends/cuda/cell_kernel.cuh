@@ -52,16 +52,31 @@ __device__ std::int64_t position_of(const Stage<Items>& s, int i) {
 
 /// One warp sweeps `count` candidates for a point; `candidate(i, id)` names the i-th and says
 /// whether it is a hit. Hits are stored at row[found...] in candidate order; returns the new `found`.
+/// Sweeps of 32 go four at a time where they can: their lookups (an id, an index, a word of
+/// bits that depends on the index) are independent, so their latencies overlap.
 template <typename Candidate>
 __device__ int sweep(int count, point_id* row, int found, Candidate candidate) {
+  constexpr int unroll = 4;
   const int lane = threadIdx.x % 32;
-  for (int i0 = 0; i0 < count; i0 += 32) {
-    const int i = i0 + lane;
-    point_id other = 0;
-    const bool hit = i < count && candidate(i, other);
+  const auto store = [&](bool hit, point_id other) {
     const unsigned ballot = __ballot_sync(0xffffffffu, hit);
     if (hit) row[found + __popc(ballot & ((1u << lane) - 1))] = other;
     found += __popc(ballot);
+  };
+  int i0 = 0;
+  for (; i0 + 32 * unroll <= count; i0 += 32 * unroll) {
+    point_id other[unroll];
+    bool hit[unroll];
+#pragma unroll
+    for (int u = 0; u < unroll; ++u) hit[u] = candidate(i0 + 32 * u + lane, other[u]);
+#pragma unroll
+    for (int u = 0; u < unroll; ++u) store(hit[u], other[u]);
+  }
+  for (; i0 < count; i0 += 32) {
+    const int i = i0 + lane;
+    point_id other = 0;
+    const bool hit = i < count && candidate(i, other);
+    store(hit, other);
   }
   return found;
 }
