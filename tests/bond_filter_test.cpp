@@ -115,6 +115,31 @@ TEST(BondFilter, FilteredListsMatchBruteForceAndStaySymmetric) {
   }
 }
 
+// A lattice whose points lie on the shapes' edges, rims and planes: bonds through the edges
+// (inside), the rim (outside) and lying in the plane take `cuts`, bonds through the middle the
+// shortcut for ends deep within a shape; all as the brute force, far from the origin too.
+TEST(BondFilter, LatticeBondsOnEdgesRimsAndPlanesMatchBruteForce) {
+  for (double offset : {0.0, 1e6}) {
+    PointSet points = lattice(8, 3, 8.0);  // the integers 0..7 on each axis
+    for (double& x : points.xyz) x += offset - 0.5;
+    const double o = offset;
+    const std::vector<BondFilter> filters{
+        RectangleFilter{{1, 0, 0}, {o + 2, o + 1, o + 5}, {0, 1, 0}, 4, 3},   // x = 2: y in [1, 5], z in [2, 5]
+        RectangleFilter{{0, 0, 1}, {o + 1, o + 1, o + 4.5}, {1, 0, 0}, 5, 5},  // z = 4.5: its edges on the lattice
+        DiskFilter{{o + 5.5, o + 3, o + 3}, {1, 0, 0}, 2}};                    // x = 5.5, rim through lattice points
+    SearchOptions options;
+    options.horizon = 1.8;  // bonds along axes and face diagonals
+    for (bool half : {false, true}) {
+      options.half = half;
+      const NeighborList list = search(points.view(), options);
+      const NeighborList expected = brute_force_filter(list, points, filters);
+      EXPECT_LT(expected.total(), list.total());
+      EXPECT_EQ(filter_bonds(list, points.view(), filters, options.horizon), expected) << "offset " << offset;
+      EXPECT_EQ(filter_bonds(list, points.view(), filters, options.horizon, 1), expected) << "offset " << offset;
+    }
+  }
+}
+
 TEST(BondFilter, QueryListsAreFilteredAgainstTheReferences) {
   const PointSet references = random_cloud(2000, 3, 8), queries = random_cloud(300, 3, 9);
   SearchOptions options;

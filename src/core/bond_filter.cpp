@@ -11,6 +11,7 @@
 
 #include "select_entries.hpp"
 #include "horizon/error.hpp"
+#include "horizon/grid.hpp"
 
 namespace horizon {
 
@@ -86,13 +87,17 @@ bool cuts(const Shape& s, const Vec& a, const Vec& b) {
 
 Vec point(PointView p, std::size_t i) { return {p(i, 0), p(i, 1), p.dims() == 3 ? p(i, 2) : 0.0}; }
 
-/// Per point, which filters' planes it lies strictly above and below (bit f), and which it is
-/// near: within `reach` of the plane and of the shape's extent. A bond can only cross filter f
-/// when its ends are not both above nor both below, and, when no longer than `reach`, only when
-/// both are near f (so rows of points near no filter are kept whole). One struct per point: a
-/// bond's test reads its other end's three masks from one cache line.
+/// Per point, which filters' planes it lies strictly above and below (bit f), which it is
+/// near: within `reach` of the plane and of the shape's extent, and, of those, which it lies
+/// deep within: its projection on the plane inside the shape by a margin far above rounding.
+/// A bond can only cross filter f when its ends are not both above nor both below, and, when no
+/// longer than `reach`, only when both are near f (so rows of points near no filter are kept
+/// whole). A bond whose ends lie strictly on both sides of f and deep within it crosses f
+/// inside the shape (the crossing lies between the ends' projections, and the shape is convex):
+/// cut without `cuts`. One struct per point: a bond's test reads its other end's masks from one
+/// cache line.
 struct Sides {
-  std::uint64_t above = 0, below = 0, near = 0;
+  std::uint64_t above = 0, below = 0, near = 0, deep = 0;
 };
 
 bool within_reach(const Shape& s, const Vec& x, double side, double reach) {
@@ -106,7 +111,33 @@ bool within_reach(const Shape& s, const Vec& x, double side, double reach) {
   return dot(d, d) < (s.radius + reach) * (s.radius + reach);
 }
 
-ScratchBuffer<Sides> sides_of(PointView points, const std::vector<Shape>& shapes, double reach, int threads) {
+/// Whether x's projection lies inside the shape by at least `margin`.
+bool deep_within(const Shape& s, const Vec& x, double margin) {
+  if (!s.disk) {
+    const auto [along_bottom, along_side] = rectangle_coordinates(s, x);
+    return along_bottom >= margin && along_bottom <= s.bottom_length - margin && along_side >= margin &&
+           along_side <= s.side_length - margin;
+  }
+  // x projected on the plane, relative to the centre: no cancellation of large squares.
+  const Vec d = minus(x, s.origin);
+  const double along_normal = dot(d, s.normal) / dot(s.normal, s.normal);
+  const Vec r{d[0] - along_normal * s.normal[0], d[1] - along_normal * s.normal[1], d[2] - along_normal * s.normal[2]};
+  return s.radius > margin && dot(r, r) < (s.radius - margin) * (s.radius - margin);
+}
+
+/// A margin far above the rounding of `cuts`: a few ulps of the largest magnitude it meets (the
+/// coordinates of either point set in `box`, the shape's origin and extent).
+double deep_margin(const Shape& s, const Bounds& box) {
+  double scale = s.bottom_length + s.side_length + s.radius;
+  for (int a = 0; a < 3; ++a)
+    scale += std::max(std::abs(box.lo[static_cast<std::size_t>(a)]), std::abs(box.hi[static_cast<std::size_t>(a)])) +
+             std::abs(s.origin[static_cast<std::size_t>(a)]);
+  return scale * 0x1p-36;
+}
+
+/// `margin`: deep_margin of each shape.
+ScratchBuffer<Sides> sides_of(PointView points, const std::vector<Shape>& shapes, const std::vector<double>& margin,
+                              double reach, int threads) {
   const auto n = static_cast<std::int64_t>(points.size());
   ScratchBuffer<Sides> sides(points.size());  // not zeroed: each is written once below
   // A margin for the rounding of the dot products (bond lengths and offsets are O(reach) here).
@@ -119,7 +150,10 @@ ScratchBuffer<Sides> sides_of(PointView points, const std::vector<Shape>& shapes
       const double side = side_of(shapes[f], x);
       s.above |= std::uint64_t{side > 0} << f;
       s.below |= std::uint64_t{side < 0} << f;
-      s.near |= std::uint64_t{within_reach(shapes[f], x, side, padded)} << f;
+      // Only a bond with both ends near f can cross it: deep is of no use to the others.
+      const bool near = within_reach(shapes[f], x, side, padded);
+      s.near |= std::uint64_t{near} << f;
+      s.deep |= std::uint64_t{near && deep_within(shapes[f], x, margin[f])} << f;
     }
     sides[static_cast<std::size_t>(i)] = s;
   }
@@ -147,14 +181,27 @@ NeighborList filter(NeighborList list, PointView rows, PointView columns, bool o
   if (!(reach >= 0)) throw Error("bond filters: the reach must be >= 0 (0: unknown)");
   std::vector<Shape> shapes(filters.size());
   std::transform(filters.begin(), filters.end(), shapes.begin(), shape_of);
-  const ScratchBuffer<Sides> row_sides = sides_of(rows, shapes, reach, threads);
-  const ScratchBuffer<Sides> column_sides = one_set ? ScratchBuffer<Sides>{} : sides_of(columns, shapes, reach, threads);
+  Bounds box = bounds_of(rows, threads);
+  if (!one_set) {
+    const Bounds more = bounds_of(columns, threads);
+    for (std::size_t a = 0; a < 3; ++a) {
+      box.lo[a] = std::min(box.lo[a], more.lo[a]);
+      box.hi[a] = std::max(box.hi[a], more.hi[a]);
+    }
+  }
+  std::vector<double> margin(shapes.size());
+  for (std::size_t f = 0; f < shapes.size(); ++f) margin[f] = deep_margin(shapes[f], box);
+  const ScratchBuffer<Sides> row_sides = sides_of(rows, shapes, margin, reach, threads);
+  const ScratchBuffer<Sides> column_sides =
+      one_set ? ScratchBuffer<Sides>{} : sides_of(columns, shapes, margin, reach, threads);
   const Sides* col = one_set ? row_sides.data() : column_sides.data();
 
   const std::uint64_t all = filters.size() == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << filters.size()) - 1;
   // Whether the bond i-j survives every filter whose plane it may cross.
   auto kept = [&](std::size_t i, point_id j) {
     const Sides &at_i = row_sides[i], &at_j = col[j];
+    const std::uint64_t across = (at_i.above & at_j.below) | (at_i.below & at_j.above);
+    if (across & at_i.deep & at_j.deep) return false;
     const std::uint64_t same_side = (at_i.above & at_j.above) | (at_i.below & at_j.below);
     std::uint64_t candidates = ~same_side & at_i.near & at_j.near & all;
     if (!candidates) return true;
