@@ -126,13 +126,15 @@ bool deep_within(const Shape& s, const Vec& x, double margin) {
 }
 
 /// A margin far above the rounding of `cuts`: a few ulps of the largest magnitude it meets (the
-/// coordinates of either point set in `box`, the shape's origin and extent).
+/// coordinates of either point set in `box`, the shape's origin and extent), times its vectors'
+/// (unit, unless a caller broke that contract).
 double deep_margin(const Shape& s, const Bounds& box) {
-  double scale = s.bottom_length + s.side_length + s.radius;
-  for (int a = 0; a < 3; ++a)
-    scale += std::max(std::abs(box.lo[static_cast<std::size_t>(a)]), std::abs(box.hi[static_cast<std::size_t>(a)])) +
-             std::abs(s.origin[static_cast<std::size_t>(a)]);
-  return scale * 0x1p-36;
+  double scale = s.bottom_length + s.side_length + s.radius, vectors = 1;
+  for (std::size_t a = 0; a < 3; ++a) {
+    scale += std::max(std::abs(box.lo[a]), std::abs(box.hi[a])) + std::abs(s.origin[a]);
+    vectors += std::abs(s.normal[a]) + std::abs(s.bottom[a]) + std::abs(s.side[a]);
+  }
+  return scale * vectors * 0x1p-36;
 }
 
 /// `margin`: deep_margin of each shape.
