@@ -128,7 +128,7 @@ TEST(BondFilter, LatticeBondsOnEdgesRimsAndPlanesMatchBruteForce) {
         RectangleFilter{{0, 0, 1}, {o + 1, o + 1, o + 4.5}, {1, 0, 0}, 5, 5},  // z = 4.5: its edges on the lattice
         DiskFilter{{o + 5.5, o + 3, o + 3}, {1, 0, 0}, 2}};                    // x = 5.5, rim through lattice points
     SearchOptions options;
-    options.horizon = 1.8;  // bonds along axes and face diagonals
+    options.horizon = 1.8;  // bonds along axes, face and body diagonals
     for (bool half : {false, true}) {
       options.half = half;
       const NeighborList list = search(points.view(), options);

@@ -16,6 +16,8 @@ struct Bounds {
   std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0};
 };
 Bounds bounds_of(PointView points, int threads = 1);
+/// The bounding box of two point sets together (an empty one adds nothing).
+Bounds bounds_of(PointView points, PointView more, int threads = 1);
 
 struct Grid {
   int dims = 3;

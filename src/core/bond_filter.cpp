@@ -183,14 +183,7 @@ NeighborList filter(NeighborList list, PointView rows, PointView columns, bool o
   if (!(reach >= 0)) throw Error("bond filters: the reach must be >= 0 (0: unknown)");
   std::vector<Shape> shapes(filters.size());
   std::transform(filters.begin(), filters.end(), shapes.begin(), shape_of);
-  Bounds box = bounds_of(rows, threads);
-  if (!one_set) {
-    const Bounds more = bounds_of(columns, threads);
-    for (std::size_t a = 0; a < 3; ++a) {
-      box.lo[a] = std::min(box.lo[a], more.lo[a]);
-      box.hi[a] = std::max(box.hi[a], more.hi[a]);
-    }
-  }
+  const Bounds box = one_set ? bounds_of(rows, threads) : bounds_of(rows, columns, threads);
   std::vector<double> margin(shapes.size());
   for (std::size_t f = 0; f < shapes.size(); ++f) margin[f] = deep_margin(shapes[f], box);
   const ScratchBuffer<Sides> row_sides = sides_of(rows, shapes, margin, reach, threads);

@@ -52,17 +52,23 @@ Bounds bounds_of(PointView points, int threads) {
   return flat ? bounds_of<double, 2>(xyz, n, threads) : bounds_of<double, 3>(xyz, n, threads);
 }
 
-Grid Grid::fit(PointView points, PointView more, double horizon, int cells_per_horizon, int threads) {
-  if (more.empty()) return fit(points, horizon, cells_per_horizon, threads);
-  Bounds box = bounds_of(more, threads);
-  if (!points.empty()) {
-    const Bounds first = bounds_of(points, threads);
-    for (int a = 0; a < 3; ++a) {
-      box.lo[a] = std::min(box.lo[a], first.lo[a]);
-      box.hi[a] = std::max(box.hi[a], first.hi[a]);
+Bounds bounds_of(PointView points, PointView more, int threads) {
+  if (points.empty()) return bounds_of(more, threads);
+  Bounds box = bounds_of(points, threads);
+  if (!more.empty()) {
+    const Bounds other = bounds_of(more, threads);
+    for (std::size_t a = 0; a < 3; ++a) {
+      box.lo[a] = std::min(box.lo[a], other.lo[a]);
+      box.hi[a] = std::max(box.hi[a], other.hi[a]);
     }
   }
-  return from_bounds(box, points.dims(), points.size() + more.size(), horizon, cells_per_horizon);
+  return box;
+}
+
+Grid Grid::fit(PointView points, PointView more, double horizon, int cells_per_horizon, int threads) {
+  if (more.empty()) return fit(points, horizon, cells_per_horizon, threads);
+  return from_bounds(bounds_of(points, more, threads), points.dims(), points.size() + more.size(), horizon,
+                     cells_per_horizon);
 }
 
 Grid Grid::from_bounds(const Bounds& box, int dims, std::size_t count, double horizon,
