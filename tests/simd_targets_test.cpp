@@ -12,7 +12,9 @@
 #include <tuple>
 
 #include "datasets.hpp"
+#include "horizon/generate.hpp"
 #include "horizon/oracle.hpp"
+#include "horizon/radii.hpp"
 #include "horizon/search.hpp"
 #include "horizon/verlet_list.hpp"
 
@@ -119,6 +121,45 @@ TEST(SimdTargets, RowsOfEveryLengthAreSortedOnEveryTarget) {
         EXPECT_EQ(list.indices(), expected.indices()) << hwy::TargetName(target) << (half ? " half" : "");
       }
   });
+}
+
+// Per-point radii: each row tests only the cells its radius reaches, and a row longer than the
+// sorting network takes the cell's sorted stencil. Dense clouds (rows up to ~1500 ids, stencils
+// of thousands) and a lattice whose points lie on cell faces and at distances equal to radii,
+// k = 1-3, on every target.
+TEST(SimdTargets, RadiiRowsFromTheCellsTheyReachMatchBruteForce) {
+  struct Cloud {
+    std::string name;
+    PointSet points;
+    double horizon;
+  };
+  std::vector<Cloud> clouds;
+  for (int dims : {2, 3}) {
+    clouds.push_back({"dense " + std::to_string(dims) + "-D", random_cloud(dims == 3 ? 3000 : 2000, dims, 5, 3.0), 0.5});
+    clouds.push_back({"lattice " + std::to_string(dims) + "-D", lattice(dims == 3 ? 12 : 40, dims, dims == 3 ? 12 : 40), 1.5});
+  }
+  for (Cloud& cloud : clouds) {
+    std::vector<double> radii(cloud.points.size());
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> exponent(std::log(0.3), std::log(3.0));
+    const bool on_lattice = cloud.name.starts_with("lattice");
+    for (double& r : radii) r = on_lattice ? std::vector<double>{0.5, 1.0, 2.0, 3.0, 4.0}[rng() % 5] : cloud.horizon * std::exp(exponent(rng));
+    for (Metric metric : {Metric::euclidean, Metric::manhattan, Metric::chebyshev}) {
+      SearchOptions options;
+      options.metric = metric;
+      const NeighborList expected = brute_force_with_radii(cloud.points.view(), radii, RadiusRule::gather, options);
+      for_each_target([&](std::int64_t target) {
+        for (int k : {1, 2, 3}) {
+          options.cells_per_horizon = k;
+          const NeighborList list = search_with_radii(cloud.points.view(), radii, RadiusRule::gather, options);
+          const std::string where =
+              std::string(hwy::TargetName(target)) + " " + cloud.name + " " + metric_name(metric) + " k" + std::to_string(k);
+          ASSERT_EQ(list.offsets(), expected.offsets()) << where;
+          EXPECT_EQ(list.indices(), expected.indices()) << where;
+        }
+      });
+    }
+  }
 }
 
 }  // namespace

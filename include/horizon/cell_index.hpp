@@ -63,6 +63,13 @@ public:
   /// last <= k), in the same order. Returns the number of ranges written.
   int stencil_columns(std::size_t c, std::int64_t first, std::int64_t last, Range* out) const;
 
+  /// The same stencil cell by cell: the run of each cell (cx+dx, cy+dy, cz+dz), |dx|,|dy|,|dz| <= k,
+  /// empty ones included, at out[((dz + kz) * (2k+1) + dy + k) * (2k+1) + dx + k] (kz = k in 3-D,
+  /// kz = dz = 0 in 2-D).
+  /// A row of cells dx = a .. b is then the run out[.. a].begin .. out[.. b].end. Writes
+  /// max_stencil_cells() ranges.
+  void stencil_cells(std::size_t c, Range* out) const;
+
   /// The half of that stencil which comes after cell c in the sort, so that each pair of
   /// points is in the stencil of exactly one of their cells, or both in one cell: first the run
   /// of cells cx .. cx+k (cell c's own points first), then the rows (cy+dy, cz) for dy = 1..k
@@ -77,6 +84,8 @@ public:
 
   /// Largest number of ranges stencil() can write: (2k+1)^(dims-1).
   int max_stencil_rows() const;
+  /// Number of ranges stencil_cells() writes: (2k+1)^dims.
+  int max_stencil_cells() const { return max_stencil_rows() * (2 * grid_.cells_per_horizon + 1); }
 
 private:
   /// The run of sorted positions of cells x_first .. x_last of the row of cells (cy, cz).

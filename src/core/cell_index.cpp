@@ -204,6 +204,15 @@ int CellIndex::stencil_columns(std::size_t c, std::int64_t first, std::int64_t l
   return rows;
 }
 
+void CellIndex::stencil_cells(std::size_t c, Range* out) const {
+  const std::int64_t k = grid_.cells_per_horizon;
+  const std::int64_t reach_z = grid_.dims == 3 ? k : 0;
+  const auto [cz, cy, cx] = cell_coord_[c];
+  for (std::int64_t dz = -reach_z; dz <= reach_z; ++dz)
+    for (std::int64_t dy = -k; dy <= k; ++dy)
+      for (std::int64_t dx = -k; dx <= k; ++dx) *out++ = row(cx + dx, cx + dx, cy + dy, cz + dz);
+}
+
 int CellIndex::upper_stencil(std::size_t c, Range* out) const {
   const std::int64_t k = grid_.cells_per_horizon;
   const std::int64_t reach_z = grid_.dims == 3 ? k : 0;

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <vector>
@@ -66,6 +67,21 @@ HWY_NOINLINE bool SortRowTo(const point_id* row, std::int64_t count, point_id dr
   return SortShortRowTo(row, count, drop, out, kept);
 }
 
+/// The columns of cells, -low .. high around its own, that a point with cell coordinate t (along
+/// one axis, padding included, as Grid::cell_of computes it before the floor) in cell `cell` can
+/// hold neighbours in with `reach` = its radius in cells. The slack (far above the rounding of t
+/// and of the radius) keeps a cell whenever any of its points could pass the exact test.
+struct Reach {
+  int low, high;
+};
+inline Reach ReachAlong(double t, std::int64_t cell, double reach, int k) {
+  const double within = t - static_cast<double>(cell - k);  // in [0, 1)
+  const double slack = 0x1p-30 * (1 + std::fabs(t)) + 0x1p-30 * reach;
+  const double low = std::ceil(reach + slack - within), high = std::ceil(reach + slack + within) - 1;
+  return {static_cast<int>(std::clamp(low, 0.0, static_cast<double>(k))),
+          static_cast<int>(std::clamp(high, 0.0, static_cast<double>(k)))};
+}
+
 template <Metric M, int D, IdTest Ids, bool Fill>
 void VisitCells(const FamilyPass& pass, CellRun run) {
   const hn::ScalableTag<double> d;
@@ -85,6 +101,12 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
   std::vector<CellIndex::Range> rows(static_cast<std::size_t>(index.max_stencil_rows()));
   SortedStencil sorted;
   std::vector<point_id> row_buffer;  // a row is written here, then copied to its exact place
+  // Per-point radii: each row tests only the stencil's cells its radius reaches (a point whose
+  // radius is a quarter of the class's largest meets about 3.4 of the 27 cells, k = 1). A long
+  // row is taken from the cell's sorted stencil instead, which no row needs to sort.
+  const int k = index.grid().cells_per_horizon, width = 2 * k + 1, kz = D == 3 ? k : 0;
+  std::vector<CellIndex::Range> cells(pass.row_radius ? static_cast<std::size_t>(index.max_stencil_cells()) : 0);
+  constexpr std::int64_t short_row = ShortRowCapacity<point_id>();
   constexpr std::int64_t lookahead = 16;
 
   // A batch of rows (FamilyPass::rows_begin..rows_end) fills only the cells holding one of its points.
@@ -115,7 +137,14 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
     // Sorted rows: from a stencil sorted once per cell when it is large; small rows (m = 1.5:
     // 80 candidates, 18 neighbours) sort faster one by one, in registers.
     const bool sorted_stencil = Fill && options.sort_rows && candidates >= 256;
-    if (sorted_stencil) sorted.gather(index, c);
+    bool gathered = false;
+    auto gather = [&] {
+      if (!gathered) sorted.gather(index, c);
+      gathered = true;
+    };
+    if (sorted_stencil && !pass.row_radius) gather();
+    if (pass.row_radius) index.stencil_cells(c, cells.data());
+    const auto& cell = index.cell_coord(c);  // (cz, cy, cx)
     const auto [first, last] = index.rows_of(c);
     for (std::int64_t p = first; p < last; ++p) {
       const point_id self = order[p];
@@ -142,9 +171,32 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       const auto id = hn::Set(di, self);
       point_id* const row = row_buffer.data();  // empty when counting
       std::int64_t found = 0;
-      if (sorted_stencil) {
+      bool sorted_row = sorted_stencil && !pass.row_radius;  // found in id order from the sorted stencil
+      if (Fill && sorted_stencil && pass.row_radius &&
+          offsets[self + 1] - offsets[self] + row_self_found > short_row) {
+        gather();
+        sorted_row = true;
+      }
+      if (sorted_row) {
         found = TestCandidates<M, D, Ids, Fill>(px, py, pz, id, row_threshold, sorted.coords(0), sorted.coords(1),
                                                  sorted.coords(2), sorted.ids(), 0, sorted.size(), row);
+      } else if (pass.row_radius) {
+        const Grid& grid = index.grid();
+        const double reach = pass.row_radius[self] * grid.inverse_side;
+        Reach along[3] = {{0, 0}, {0, 0}, {0, 0}};
+        for (int a = 0; a < D; ++a) {
+          const double coordinate = a == 0 ? x[p] : a == 1 ? y[p] : z[p];
+          along[a] = ReachAlong((coordinate - grid.origin[static_cast<std::size_t>(a)]) * grid.inverse_side,
+                                cell[static_cast<std::size_t>(2 - a)], reach, k);
+        }
+        for (int dz = -along[2].low; dz <= along[2].high; ++dz)
+          for (int dy = -along[1].low; dy <= along[1].high; ++dy) {
+            const CellIndex::Range* columns = cells.data() + ((dz + kz) * width + dy + k) * width + k;
+            const std::int64_t begin = columns[-along[0].low].begin, end = columns[along[0].high].end;
+            if (begin < end)
+              found += TestCandidates<M, D, Ids, Fill>(px, py, pz, id, row_threshold, x, y, z, order, begin, end,
+                                                        Fill ? row + found : nullptr);
+          }
       } else {
         for (int r = 0; r < row_count; ++r)
           found += TestCandidates<M, D, Ids, Fill>(px, py, pz, id, row_threshold, x, y, z, order, rows[r].begin,
@@ -152,7 +204,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       }
       if constexpr (Fill) {
         point_id* const place = pass.indices + (offsets[self] - base);
-        if (options.sort_rows && !sorted_stencil) {
+        if (options.sort_rows && !sorted_row) {
           // In registers by a sorting network, `self` dropped, straight to its place; a longer
           // row (rare: the stencil is sorted from 256 candidates) by insertion, then copied.
           // Insertion mispredicts a branch per move on rows in no order: AMD Zen 5, m = 1.5,

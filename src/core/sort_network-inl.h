@@ -152,6 +152,13 @@ HWY_INLINE void SortVectors(D d, const T* row, std::int64_t count, T drop, T* ou
 /// to out[0, kept) when count <= 64 (32 with 4 lanes) and the vectors have at least 4 lanes;
 /// returns false otherwise (nothing written). Reads up to a vector past `count`: the caller pads
 /// the row by hn::Lanes(ScalableTag<T>). Writes nothing past out[kept - 1].
+/// The longest row SortShortRowTo sorts: 64 ids (AVX2, AVX-512), 32 (SSE4), none below 4 lanes.
+template <class T>
+constexpr std::int64_t ShortRowCapacity() {
+  constexpr auto lanes = static_cast<std::int64_t>(hn::MaxLanes(hn::ScalableTag<T>()));
+  return lanes < 4 ? 0 : (lanes >= 16 ? 4 : 8) * lanes;
+}
+
 template <class T>
 HWY_INLINE bool SortShortRowTo(const T* row, std::int64_t count, T drop, T* out, std::int64_t kept) {
   const hn::ScalableTag<T> d;
@@ -159,7 +166,7 @@ HWY_INLINE bool SortShortRowTo(const T* row, std::int64_t count, T drop, T* out,
   if constexpr (lanes < 4) {
     return false;
   } else {
-    constexpr std::int64_t most = lanes >= 16 ? 4 : 8;  // vectors: 64 ids (AVX2, AVX-512), 32 (SSE4)
+    constexpr std::int64_t most = ShortRowCapacity<T>() / lanes;  // vectors
     if (count > most * lanes) return false;
     if (count <= lanes)
       SortVectors<1>(d, row, count, drop, out, kept);
