@@ -102,8 +102,8 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
   SortedStencil sorted;
   std::vector<point_id> row_buffer;  // a row is written here, then copied to its exact place
   // Per-point radii: each row tests only the stencil's cells its radius reaches (a point whose
-  // radius is a quarter of the class's largest meets about 3.4 of the 27 cells, k = 1). A long
-  // row is taken from the cell's sorted stencil instead, which no row needs to sort.
+  // radius is a quarter of the class's largest meets about 3.4 of the 27 cells, k = 1). A row
+  // longer than the sorting network is taken from the cell's sorted stencil instead.
   const int k = index.grid().cells_per_horizon, width = 2 * k + 1, kz = D == 3 ? k : 0;
   std::vector<CellIndex::Range> cells(pass.row_radius ? static_cast<std::size_t>(index.max_stencil_cells()) : 0);
   constexpr std::int64_t short_row = ShortRowCapacity<point_id>();
@@ -172,7 +172,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       point_id* const row = row_buffer.data();  // empty when counting
       std::int64_t found = 0;
       bool sorted_row = sorted_stencil && !pass.row_radius;  // found in id order from the sorted stencil
-      if (Fill && sorted_stencil && pass.row_radius &&
+      if (Fill && options.sort_rows && pass.row_radius &&
           offsets[self + 1] - offsets[self] + row_self_found > short_row) {
         gather();
         sorted_row = true;

@@ -62,11 +62,17 @@ bool pairs_countable(const FamilyPass& pass) {
   return !pass.row_radius && (queries == 0 || queries >= pass.index->row_count());
 }
 
+/// offsets[i + 1] = the family size of each point i with a row in `pass`, by the count pass over `runs`.
+void count_each_row(const FamilyPass& pass, const std::vector<CellRun>& runs, int threads) {
+  const auto run_count = static_cast<std::int64_t>(runs.size());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
+  for (std::int64_t r = 0; r < run_count; ++r) count_families(pass, runs[static_cast<std::size_t>(r)]);
+}
+
 /// Row offsets of every point: the count pass over `runs` (or each pair once, over slabs),
 /// scanned.
 Buffer<std::int64_t> count_rows(FamilyPass& pass, const std::vector<CellRun>& runs, int threads) {
   const CellIndex& index = *pass.index;
-  const auto run_count = static_cast<std::int64_t>(runs.size());
   Buffer<std::int64_t> offsets(index.row_count() + 1);
   offsets[0] = 0;
   pass.offsets = offsets.data();
@@ -90,8 +96,7 @@ Buffer<std::int64_t> count_rows(FamilyPass& pass, const std::vector<CellRun>& ru
     }
   } else {
     std::memset(offsets.data(), 0, offsets.size() * sizeof(std::int64_t));
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
-    for (std::int64_t r = 0; r < run_count; ++r) count_families(pass, runs[static_cast<std::size_t>(r)]);
+    count_each_row(pass, runs, threads);
   }
   inclusive_scan(offsets.data(), offsets.size(), threads);
   return offsets;
@@ -115,6 +120,31 @@ NeighborList search_families(const CellIndex& index, const SearchOptions& option
   Buffer<point_id> indices(static_cast<std::size_t>(offsets.back()));
   pass.indices = indices.data();
   fill_rows(pass, runs, threads);
+  return NeighborList(std::move(offsets), std::move(indices), options.half);
+}
+
+NeighborList search_radius_classes(std::span<const RadiusClass> classes, const SearchOptions& options, int threads) {
+  const std::size_t n = classes.front().index->row_count();
+  std::vector<std::vector<CellRun>> runs;
+  std::vector<FamilyPass> passes;
+  for (const RadiusClass& one : classes) {
+    runs.push_back(split_into_runs(*one.index, threads));
+    passes.push_back(FamilyPass{one.index, &options});
+    passes.back().row_radius = one.row_radius;
+  }
+  Buffer<std::int64_t> offsets(n + 1);
+  std::memset(offsets.data(), 0, offsets.size() * sizeof(std::int64_t));
+  for (std::size_t c = 0; c < classes.size(); ++c) {
+    passes[c].offsets = offsets.data();
+    count_each_row(passes[c], runs[c], threads);
+  }
+  inclusive_scan(offsets.data(), offsets.size(), threads);
+  check_list_fits(offsets.back(), options);
+  Buffer<point_id> indices(static_cast<std::size_t>(offsets.back()));
+  for (std::size_t c = 0; c < classes.size(); ++c) {
+    passes[c].indices = indices.data();
+    fill_rows(passes[c], runs[c], threads);
+  }
   return NeighborList(std::move(offsets), std::move(indices), options.half);
 }
 

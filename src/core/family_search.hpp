@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <span>
 
 #include "horizon/cell_index.hpp"
 #include "horizon/neighbor_list.hpp"
@@ -54,6 +55,17 @@ const char* simd_target();
 /// `row_radius`, each row within its own radius (FamilyPass::row_radius).
 NeighborList search_families(const CellIndex& index, const SearchOptions& options, int threads,
                              const double* row_radius = nullptr);
+
+/// Per-point radii in classes (radii.hpp): the index at the class's largest radius, and each
+/// point's radius, 0 for the points of other classes.
+struct RadiusClass {
+  const CellIndex* index = nullptr;
+  const double* row_radius = nullptr;
+};
+
+/// The list whose row i comes from the class holding point i (exactly one per point): every
+/// class counted into one offsets array, then filled into one list, with no parts to join.
+NeighborList search_radius_classes(std::span<const RadiusClass> classes, const SearchOptions& options, int threads);
 
 /// The same list in batches of whole rows, for lists larger than memory: `begin(offsets)` once
 /// the count pass has given every row's offset (N + 1 of them), then `rows(first, last, ids)`

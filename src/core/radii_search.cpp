@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include <omp.h>
@@ -101,53 +102,41 @@ std::vector<std::vector<point_id>> radius_classes(std::span<const double> radii)
   return members;
 }
 
-/// The gather rows on the CPU: per class, a grid at the class's largest radius and the search's
-/// own passes, each row tested with its point's radius (FamilyPass::row_radius) so rows come
-/// out exact; the classes' rows (each row in one class) put together.
+/// The gather rows on the CPU: per class, a grid at the class's largest radius, each row tested
+/// with its point's radius (FamilyPass::row_radius) in the cells that radius reaches; every
+/// class counted into one offsets array and filled into one list.
 Rows gather_on_cpu(PointView points, std::span<const double> radii, const SearchOptions& options, int threads,
                    SearchStats& stats) {
   const std::size_t n = points.size();
   SearchOptions checked = options;
   checked.horizon = *std::max_element(radii.begin(), radii.end());
   detail::validate_search(points, checked);
-  std::vector<NeighborList> parts;
-  std::vector<double> row_radius(n);
+  SearchOptions part = options;
+  part.half = false;
+  part.sort_rows = true;
+  std::vector<std::unique_ptr<CellIndex>> indexes;
+  std::vector<std::vector<double>> row_radius;  // per class: each member's radius, 0 elsewhere
+  std::vector<detail::RadiusClass> classes;
+  Stopwatch clock;
   for (const std::vector<point_id>& member : radius_classes(radii)) {
     if (member.empty()) continue;
-    Stopwatch clock;
-    std::fill(row_radius.begin(), row_radius.end(), 0.0);
-    SearchOptions part = options;
-    part.horizon = 0;
-    part.half = false;
-    part.sort_rows = true;
+    std::vector<double>& radius = row_radius.emplace_back(n, 0.0);
+    double largest = 0;
     for (const point_id i : member) {
-      row_radius[static_cast<std::size_t>(i)] = radii[static_cast<std::size_t>(i)];
-      part.horizon = std::max(part.horizon, radii[static_cast<std::size_t>(i)]);
+      radius[static_cast<std::size_t>(i)] = radii[static_cast<std::size_t>(i)];
+      largest = std::max(largest, radii[static_cast<std::size_t>(i)]);
     }
-    const CellIndex index(points, Grid::fit(points, part.horizon, part.cells_per_horizon, threads), threads);
-    stats.grid_seconds += clock.lap();
-    parts.push_back(detail::search_families(index, part, threads, row_radius.data()));
-    stats.search_seconds += clock.lap();
+    indexes.push_back(
+        std::make_unique<CellIndex>(points, Grid::fit(points, largest, part.cells_per_horizon, threads), threads));
+    classes.push_back({indexes.back().get(), radius.data()});
   }
-  Stopwatch clock;
-  Rows out;
-  out.offsets.assign(n + 1, 0);
-  for (const NeighborList& part : parts)
-    for (std::size_t i = 0; i < n; ++i) out.offsets[i + 1] += static_cast<std::int64_t>(part.row(i).size());
-  for (std::size_t i = 0; i < n; ++i) out.offsets[i + 1] += out.offsets[i];
-  out.ids.resize(static_cast<std::size_t>(out.offsets[n]));
-  const auto rows = static_cast<std::int64_t>(n);
-  for (const NeighborList& part : parts) {
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-    for (std::int64_t i = 0; i < rows; ++i) {
-      const auto row = part.row(static_cast<std::size_t>(i));
-      if (!row.empty()) std::copy(row.begin(), row.end(), out.ids.begin() + out.offsets[static_cast<std::size_t>(i)]);
-    }
-  }
+  part.horizon = checked.horizon;
+  stats.grid_seconds += clock.lap();
+  auto [offsets, ids] = detail::search_radius_classes(classes, part, threads).release();
   stats.search_seconds += clock.lap();
   stats.backend = threads > 1 || options.backend == Backend::openmp ? Backend::openmp : Backend::serial;
   stats.threads = threads;
-  return out;
+  return Rows{std::move(offsets), std::move(ids)};
 }
 
 /// Row i (a point of `row_points`): every j of `id_points` with d(i, j) < radii[i] (the gather
