@@ -125,7 +125,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       }
     if (pass.row_radius) {  // per-point radii: only the cells holding a point with a row here
       const auto [first, last] = index.rows_of(c);
-      if (std::none_of(order + first, order + last, [&](point_id i) { return pass.row_radius[i] > 0; })) continue;
+      if (std::none_of(pass.row_radius + first, pass.row_radius + last, [](double r) { return r > 0; })) continue;
     }
     const int row_count = index.stencil(c, rows.data());
     std::int64_t candidates = 0;
@@ -161,7 +161,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       auto row_threshold = threshold;
       std::int64_t row_self_found = self_found;
       if (pass.row_radius) {
-        const double radius = pass.row_radius[self];
+        const double radius = pass.row_radius[p];
         if (!(radius > 0)) continue;
         const double row_limit = metric_threshold(M, radius);
         row_threshold = hn::Set(d, row_limit);
@@ -182,7 +182,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
                                                  sorted.coords(2), sorted.ids(), 0, sorted.size(), row);
       } else if (pass.row_radius) {
         const Grid& grid = index.grid();
-        const double reach = pass.row_radius[self] * grid.inverse_side;
+        const double reach = pass.row_radius[p] * grid.inverse_side;
         Reach along[3] = {{0, 0}, {0, 0}, {0, 0}};
         for (int a = 0; a < D; ++a) {
           const double coordinate = a == 0 ? x[p] : a == 1 ? y[p] : z[p];

@@ -110,11 +110,9 @@ void fill_rows(const FamilyPass& pass, const std::vector<CellRun>& runs, int thr
 
 }  // namespace
 
-NeighborList search_families(const CellIndex& index, const SearchOptions& options, int threads,
-                             const double* row_radius) {
+NeighborList search_families(const CellIndex& index, const SearchOptions& options, int threads) {
   const std::vector<CellRun> runs = split_into_runs(index, threads);
   FamilyPass pass{&index, &options};
-  pass.row_radius = row_radius;
   Buffer<std::int64_t> offsets = count_rows(pass, runs, threads);
   check_list_fits(offsets.back(), options);
   Buffer<point_id> indices(static_cast<std::size_t>(offsets.back()));

@@ -30,8 +30,10 @@ struct FamilyPass {
   /// indices_base (a batch of a list built in parts).
   point_id rows_begin = 0, rows_end = std::numeric_limits<point_id>::max();
   std::int64_t indices_base = 0;
-  /// Per-point radii (radii.hpp): row i holds the points within row_radius[i] (<= the index's
-  /// horizon), and no row when it is 0. Null: every row within the horizon.
+  /// Per-point radii (radii.hpp), by sorted position (CellIndex::order, read in the order the
+  /// passes visit the points): the point at position p has a row of the points within
+  /// row_radius[p] (<= the index's horizon), and no row when it is 0. Null: every row within the
+  /// horizon.
   const double* row_radius = nullptr;
 };
 
@@ -51,13 +53,11 @@ void fill_families(const FamilyPass& pass, CellRun run);
 /// The instruction set the passes run with on this CPU (e.g. "AVX3", "AVX2").
 const char* simd_target();
 
-/// The neighbour list of the points of `index` on `threads` threads (1: serially); with
-/// `row_radius`, each row within its own radius (FamilyPass::row_radius).
-NeighborList search_families(const CellIndex& index, const SearchOptions& options, int threads,
-                             const double* row_radius = nullptr);
+/// The neighbour list of the points of `index` on `threads` threads (1: serially).
+NeighborList search_families(const CellIndex& index, const SearchOptions& options, int threads);
 
 /// Per-point radii in classes (radii.hpp): the index at the class's largest radius, and each
-/// point's radius, 0 for the points of other classes.
+/// point's radius by sorted position in it, 0 for the points of other classes.
 struct RadiusClass {
   const CellIndex* index = nullptr;
   const double* row_radius = nullptr;

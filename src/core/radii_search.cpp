@@ -114,21 +114,29 @@ Rows gather_on_cpu(PointView points, std::span<const double> radii, const Search
   SearchOptions part = options;
   part.half = false;
   part.sort_rows = true;
+  const std::vector<std::vector<point_id>> members = radius_classes(radii);
+  std::vector<std::uint8_t> class_of(n);
+  for (std::size_t c = 0; c < members.size(); ++c)
+    for (const point_id i : members[c]) class_of[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(c);
   std::vector<std::unique_ptr<CellIndex>> indexes;
-  std::vector<std::vector<double>> row_radius;  // per class: each member's radius, 0 elsewhere
+  std::vector<std::vector<double>> row_radius;  // per class, by sorted position: the members' radii, 0 elsewhere
   std::vector<detail::RadiusClass> classes;
   Stopwatch clock;
-  for (const std::vector<point_id>& member : radius_classes(radii)) {
-    if (member.empty()) continue;
-    std::vector<double>& radius = row_radius.emplace_back(n, 0.0);
+  for (std::size_t c = 0; c < members.size(); ++c) {
+    if (members[c].empty()) continue;
     double largest = 0;
-    for (const point_id i : member) {
-      radius[static_cast<std::size_t>(i)] = radii[static_cast<std::size_t>(i)];
-      largest = std::max(largest, radii[static_cast<std::size_t>(i)]);
-    }
-    indexes.push_back(
+    for (const point_id i : members[c]) largest = std::max(largest, radii[static_cast<std::size_t>(i)]);
+    const CellIndex& index = *indexes.emplace_back(
         std::make_unique<CellIndex>(points, Grid::fit(points, largest, part.cells_per_horizon, threads), threads));
-    classes.push_back({indexes.back().get(), radius.data()});
+    std::vector<double>& radius = row_radius.emplace_back(n);
+    const point_id* order = index.order().data();
+    const auto count = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+    for (std::int64_t p = 0; p < count; ++p) {
+      const auto i = static_cast<std::size_t>(order[p]);
+      radius[static_cast<std::size_t>(p)] = class_of[i] == c ? radii[i] : 0.0;
+    }
+    classes.push_back({&index, radius.data()});
   }
   part.horizon = checked.horizon;
   stats.grid_seconds += clock.lap();
