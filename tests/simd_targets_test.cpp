@@ -93,12 +93,12 @@ TEST(SimdTargets, VerletRefreshMatchesBruteForceOnEveryTarget) {
   });
 }
 
-// Rows of every length from 0 to 80 ids, arriving in random id order: every size of the
-// in-register sorting network (1, 2, 4 and 8 vectors), its padding, and the longer
-// rows sorted otherwise. Group g is g + 1 points at one spot, far from the others.
+// Rows of every length from 0 to 140 ids, arriving in random id order: every size of the
+// in-register sorting network (1, 2, 4 and 8 vectors: up to 128 ids with AVX-512), its padding,
+// and the longer rows sorted otherwise. Group g is g + 1 points at one spot, far from the others.
 TEST(SimdTargets, RowsOfEveryLengthAreSortedOnEveryTarget) {
   std::vector<double> xyz;
-  for (int group = 0; group <= 80; ++group)
+  for (int group = 0; group <= 140; ++group)
     for (int member = 0; member <= group; ++member) xyz.insert(xyz.end(), {10.0 * group, 0.5 * (group % 3), 0.0});
   const std::size_t n = xyz.size() / 3;
   std::vector<std::size_t> shuffled(n);

@@ -149,14 +149,15 @@ HWY_INLINE void SortVectors(D d, const T* row, std::int64_t count, T drop, T* ou
 }
 
 /// Writes row[0, count) ascending, without the one entry equal to `drop` when `kept` is count - 1,
-/// to out[0, kept) when count <= 64 (32 with 4 lanes) and the vectors have at least 4 lanes;
+/// to out[0, kept) when count <= ShortRowCapacity (8 vectors of at least 4 lanes);
 /// returns false otherwise (nothing written). Reads up to a vector past `count`: the caller pads
 /// the row by hn::Lanes(ScalableTag<T>). Writes nothing past out[kept - 1].
-/// The longest row SortShortRowTo sorts: 64 ids (AVX2, AVX-512), 32 (SSE4), none below 4 lanes.
+/// The longest row SortShortRowTo sorts, 8 vectors: 128 ids (AVX-512), 64 (AVX2), 32 (SSE4),
+/// none below 4 lanes.
 template <class T>
 constexpr std::int64_t ShortRowCapacity() {
   constexpr auto lanes = static_cast<std::int64_t>(hn::MaxLanes(hn::ScalableTag<T>()));
-  return lanes < 4 ? 0 : (lanes >= 16 ? 4 : 8) * lanes;
+  return lanes < 4 ? 0 : 8 * lanes;
 }
 
 template <class T>
@@ -174,7 +175,7 @@ HWY_INLINE bool SortShortRowTo(const T* row, std::int64_t count, T drop, T* out,
       SortVectors<2>(d, row, count, drop, out, kept);
     else if (count <= 4 * lanes)
       SortVectors<4>(d, row, count, drop, out, kept);
-    else if constexpr (most == 8)
+    else
       SortVectors<8>(d, row, count, drop, out, kept);
     return true;
   }
