@@ -84,21 +84,26 @@ struct Rows {
 
 constexpr int most_classes = 31;
 /// Radii within a factor 4 of their class's largest. Each class costs a grid over all points,
-/// and its smaller radii test more candidates per neighbour; on the clustered cloud with radii
-/// spanning 10x (horizon_radii_bench, gather, 2-core Zen 5 VM) classes of a factor 4 took
-/// 1.76-1.84 s serially and 0.87-0.88 s on 2 threads, a factor 2 1.96 s / 1.04 s, 8 2.66 s / 1.30 s.
+/// and its smaller radii reach more cells per neighbour; on the clustered cloud with radii
+/// spanning 10x (horizon_radii_bench, gather, 2-core Zen 5 VM, rows tested in the cells they
+/// reach) classes of a factor 4 took 1.3-1.4 s serially, a factor 2 2.5 s and 8 3.0 s: a finer
+/// class brings a grid of mostly empty cells.
 constexpr int class_bits = 2;
 
-/// The points of each radius class: class c holds the radii in (largest / 4^(c+1), largest / 4^c]
-/// (past 30 classes, the rest in the last), ids ascending.
+/// The class of radius r: class c holds the radii in (largest / 4^(c+1), largest / 4^c] (past
+/// 30 classes, the rest in the last).
+int class_of_radius(double r, double largest) {
+  int c = 0;
+  while (c + 1 < most_classes && r <= std::ldexp(largest, -class_bits * (c + 1))) ++c;
+  return c;
+}
+
+/// The points of each radius class, ids ascending.
 std::vector<std::vector<point_id>> radius_classes(std::span<const double> radii) {
   const double largest = *std::max_element(radii.begin(), radii.end());
   std::vector<std::vector<point_id>> members(most_classes);
-  for (std::size_t i = 0; i < radii.size(); ++i) {
-    int c = 0;
-    while (c + 1 < most_classes && radii[i] <= std::ldexp(largest, -class_bits * (c + 1))) ++c;
-    members[static_cast<std::size_t>(c)].push_back(static_cast<point_id>(i));
-  }
+  for (std::size_t i = 0; i < radii.size(); ++i)
+    members[static_cast<std::size_t>(class_of_radius(radii[i], largest))].push_back(static_cast<point_id>(i));
   return members;
 }
 
@@ -114,23 +119,29 @@ Rows gather_on_cpu(PointView points, std::span<const double> radii, const Search
   SearchOptions part = options;
   part.half = false;
   part.sort_rows = true;
-  const std::vector<std::vector<point_id>> members = radius_classes(radii);
-  std::vector<std::uint8_t> class_of(n);
-  for (std::size_t c = 0; c < members.size(); ++c)
-    for (const point_id i : members[c]) class_of[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(c);
+  // Each point's class and each class's largest radius, on every thread (serial steps cost
+  // as much as the search on 16 cores).
+  const double largest = checked.horizon;
+  const auto count = static_cast<std::int64_t>(n);
+  ScratchBuffer<std::uint8_t> class_of(n);
+  double class_largest[most_classes] = {};
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1) reduction(max : class_largest[:most_classes])
+  for (std::int64_t i = 0; i < count; ++i) {
+    const double r = radii[static_cast<std::size_t>(i)];
+    const int c = class_of_radius(r, largest);
+    class_of[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(c);
+    class_largest[c] = std::max(class_largest[c], r);
+  }
   std::vector<std::unique_ptr<CellIndex>> indexes;
-  std::vector<std::vector<double>> row_radius;  // per class, by sorted position: the members' radii, 0 elsewhere
+  std::vector<ScratchBuffer<double>> row_radius;  // per class, by sorted position: the members' radii, 0 elsewhere
   std::vector<detail::RadiusClass> classes;
   Stopwatch clock;
-  for (std::size_t c = 0; c < members.size(); ++c) {
-    if (members[c].empty()) continue;
-    double largest = 0;
-    for (const point_id i : members[c]) largest = std::max(largest, radii[static_cast<std::size_t>(i)]);
-    const CellIndex& index = *indexes.emplace_back(
-        std::make_unique<CellIndex>(points, Grid::fit(points, largest, part.cells_per_horizon, threads), threads));
-    std::vector<double>& radius = row_radius.emplace_back(n);
+  for (int c = 0; c < most_classes; ++c) {
+    if (!(class_largest[c] > 0)) continue;  // no member
+    const CellIndex& index = *indexes.emplace_back(std::make_unique<CellIndex>(
+        points, Grid::fit(points, class_largest[c], part.cells_per_horizon, threads), threads));
+    ScratchBuffer<double>& radius = row_radius.emplace_back(n);
     const point_id* order = index.order().data();
-    const auto count = static_cast<std::int64_t>(n);
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
     for (std::int64_t p = 0; p < count; ++p) {
       const auto i = static_cast<std::size_t>(order[p]);
