@@ -67,10 +67,11 @@ HWY_NOINLINE bool SortRowTo(const point_id* row, std::int64_t count, point_id dr
   return SortShortRowTo(row, count, drop, out, kept);
 }
 
-/// The columns of cells, -low .. high around its own, that a point with cell coordinate t (along
-/// one axis, padding included, as Grid::cell_of computes it before the floor) in cell `cell` can
-/// hold neighbours in with `reach` = its radius in cells. The slack (far above the rounding of t
-/// and of the radius) keeps a cell whenever any of its points could pass the exact test.
+/// Along one axis, the cells -low .. high from its own (`cell`, padding included) that can hold
+/// neighbours of a point at t = (x - origin) * inverse_side (Grid::cell_of: cell = floor(t) + k)
+/// with `reach` = its radius in cells. Every metric's distance is at least the difference along
+/// one axis, so a cell is skipped only when its face is beyond the radius; the slack (far above
+/// the rounding of t and of the radius) keeps it whenever one of its points could pass the test.
 struct Reach {
   int low, high;
 };
