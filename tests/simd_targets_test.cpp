@@ -124,7 +124,7 @@ TEST(SimdTargets, RowsOfEveryLengthAreSortedOnEveryTarget) {
 }
 
 // Per-point radii: each row tests only the cells its radius reaches, and a row longer than the
-// sorting network takes the cell's sorted stencil. Dense clouds (rows up to ~1500 ids, stencils
+// sorting network takes the cell's sorted stencil (gather) or is sorted otherwise (min). Dense clouds (rows up to ~1500 ids, stencils
 // of thousands) and a lattice whose points lie on cell faces and at distances equal to radii,
 // k = 1-3, on every target.
 TEST(SimdTargets, RadiiRowsFromTheCellsTheyReachMatchBruteForce) {
@@ -143,22 +143,24 @@ TEST(SimdTargets, RadiiRowsFromTheCellsTheyReachMatchBruteForce) {
     std::mt19937_64 rng(3);
     std::uniform_real_distribution<double> exponent(std::log(0.3), std::log(3.0));
     const bool on_lattice = cloud.name.starts_with("lattice");
-    for (double& r : radii) r = on_lattice ? std::vector<double>{0.5, 1.0, 2.0, 3.0, 4.0}[rng() % 5] : cloud.horizon * std::exp(exponent(rng));
-    for (Metric metric : {Metric::euclidean, Metric::manhattan, Metric::chebyshev}) {
-      SearchOptions options;
-      options.metric = metric;
-      const NeighborList expected = brute_force_with_radii(cloud.points.view(), radii, RadiusRule::gather, options);
-      for_each_target([&](std::int64_t target) {
-        for (int k : {1, 2, 3}) {
-          options.cells_per_horizon = k;
-          const NeighborList list = search_with_radii(cloud.points.view(), radii, RadiusRule::gather, options);
-          const std::string where =
-              std::string(hwy::TargetName(target)) + " " + cloud.name + " " + metric_name(metric) + " k" + std::to_string(k);
-          ASSERT_EQ(list.offsets(), expected.offsets()) << where;
-          EXPECT_EQ(list.indices(), expected.indices()) << where;
-        }
-      });
-    }
+    const double lattice_radii[] = {0.5, 1.0, 2.0, 3.0, 4.0};  // distances on the lattice: ties
+    for (double& r : radii) r = on_lattice ? lattice_radii[rng() % 5] : cloud.horizon * std::exp(exponent(rng));
+    for (Metric metric : {Metric::euclidean, Metric::manhattan, Metric::chebyshev})
+      for (RadiusRule rule : {RadiusRule::gather, RadiusRule::min}) {  // min: each candidate's radius too
+        SearchOptions options;
+        options.metric = metric;
+        const NeighborList expected = brute_force_with_radii(cloud.points.view(), radii, rule, options);
+        for_each_target([&](std::int64_t target) {
+          for (int k : {1, 2, 3}) {
+            options.cells_per_horizon = k;
+            const NeighborList list = search_with_radii(cloud.points.view(), radii, rule, options);
+            const std::string where = std::string(hwy::TargetName(target)) + " " + cloud.name + " " +
+                                      metric_name(metric) + " " + radius_rule_name(rule) + " k" + std::to_string(k);
+            ASSERT_EQ(list.offsets(), expected.offsets()) << where;
+            EXPECT_EQ(list.indices(), expected.indices()) << where;
+          }
+        });
+      }
   }
 }
 

@@ -35,10 +35,12 @@ enum class IdTest { above_self, not_self, none };
 /// ids: a neighbour when within the horizon and passing `Ids`. Returns
 /// their number; Fill also writes their ids to `out` in array order (and up to a vector of junk
 /// after them). Loads may run up to a vector past `end` (the arrays are padded).
-template <Metric M, int D, IdTest Ids, bool Fill, class V, class VI>
+/// With OwnLimits, a candidate is a neighbour only below its own threshold limits[q] too.
+template <Metric M, int D, IdTest Ids, bool Fill, bool OwnLimits = false, class V, class VI>
 HWY_INLINE std::int64_t TestCandidates(V px, V py, V pz, VI self, V threshold, const double* x,
                                        const double* y, const double* z, const point_id* ids,
-                                       std::int64_t begin, std::int64_t end, point_id* out) {
+                                       std::int64_t begin, std::int64_t end, point_id* out,
+                                       const double* limits = nullptr) {
   std::int64_t found = 0;
   const hn::DFromV<V> d;
   const hn::DFromV<VI> di;
@@ -49,7 +51,8 @@ HWY_INLINE std::int64_t TestCandidates(V px, V py, V pz, VI self, V threshold, c
     const V dz = D == 3 ? hn::Sub(pz, hn::LoadU(d, z + q)) : dx;
     // Masks cannot change lane size: combine the double and id lanes' masks as bits.
     std::uint8_t near[8], other[8] = {0xff};
-    hn::StoreMaskBits(d, hn::Lt(accumulate<M, D>(dx, dy, dz), threshold), near);
+    const V bound = OwnLimits ? hn::Min(threshold, hn::LoadU(d, limits + q)) : threshold;
+    hn::StoreMaskBits(d, hn::Lt(accumulate<M, D>(dx, dy, dz), bound), near);
     const VI candidate = hn::LoadU(di, ids + q);
     if constexpr (Ids != IdTest::none)
       hn::StoreMaskBits(di, Ids == IdTest::above_self ? hn::Gt(candidate, self) : hn::Ne(candidate, self), other);
@@ -173,7 +176,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       point_id* const row = row_buffer.data();  // empty when counting
       std::int64_t found = 0;
       bool sorted_row = sorted_stencil && !pass.row_radius;  // found in id order from the sorted stencil
-      if (Fill && options.sort_rows && pass.row_radius &&
+      if (Fill && options.sort_rows && pass.row_radius && !pass.candidate_threshold &&
           offsets[self + 1] - offsets[self] + row_self_found > short_row) {
         gather();
         sorted_row = true;
@@ -194,9 +197,13 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
           for (int dy = -along[1].low; dy <= along[1].high; ++dy) {
             const CellIndex::Range* columns = cells.data() + ((dz + kz) * width + dy + k) * width + k;
             const std::int64_t begin = columns[-along[0].low].begin, end = columns[along[0].high].end;
-            if (begin < end)
-              found += TestCandidates<M, D, Ids, Fill>(px, py, pz, id, row_threshold, x, y, z, order, begin, end,
-                                                        Fill ? row + found : nullptr);
+            if (begin >= end) continue;
+            point_id* const out = Fill ? row + found : nullptr;
+            if (pass.candidate_threshold)
+              found += TestCandidates<M, D, Ids, Fill, true>(px, py, pz, id, row_threshold, x, y, z, order, begin,
+                                                              end, out, pass.candidate_threshold);
+            else
+              found += TestCandidates<M, D, Ids, Fill>(px, py, pz, id, row_threshold, x, y, z, order, begin, end, out);
           }
       } else {
         for (int r = 0; r < row_count; ++r)

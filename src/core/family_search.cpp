@@ -129,6 +129,7 @@ NeighborList search_radius_classes(std::span<const RadiusClass> classes, const S
     runs.push_back(split_into_runs(*one.index, threads));
     passes.push_back(FamilyPass{one.index, &options});
     passes.back().row_radius = one.row_radius;
+    passes.back().candidate_threshold = one.candidate_threshold;
   }
   Buffer<std::int64_t> offsets(n + 1);
   std::memset(offsets.data(), 0, offsets.size() * sizeof(std::int64_t));

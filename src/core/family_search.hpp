@@ -35,6 +35,10 @@ struct FamilyPass {
   /// row_radius[p] (<= the index's horizon), and no row when it is 0. Null: every row within the
   /// horizon.
   const double* row_radius = nullptr;
+  /// With row_radius, the min rule: each point's own threshold (metric_threshold of its radius)
+  /// by sorted position, padded like the coordinates; a pair is kept only below both its row's
+  /// and its candidate's. Such rows never come from the sorted stencil.
+  const double* candidate_threshold = nullptr;
 };
 
 /// For each point i of the run: offsets[i + 1] = the size of its family. Compiled for each SIMD
@@ -61,6 +65,7 @@ NeighborList search_families(const CellIndex& index, const SearchOptions& option
 struct RadiusClass {
   const CellIndex* index = nullptr;
   const double* row_radius = nullptr;
+  const double* candidate_threshold = nullptr;  ///< the min rule (FamilyPass::candidate_threshold)
 };
 
 /// The list whose row i comes from the class holding point i (exactly one per point): every

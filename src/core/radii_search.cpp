@@ -109,9 +109,10 @@ std::vector<std::vector<point_id>> radius_classes(std::span<const double> radii)
 
 /// The gather rows on the CPU: per class, a grid at the class's largest radius, each row tested
 /// with its point's radius (FamilyPass::row_radius) in the cells that radius reaches; every
-/// class counted into one offsets array and filled into one list.
+/// class counted into one offsets array and filled into one list. With `min_rule`, the min
+/// rule's full rows instead: each pair also below the candidate's radius.
 Rows gather_on_cpu(PointView points, std::span<const double> radii, const SearchOptions& options, int threads,
-                   SearchStats& stats) {
+                   SearchStats& stats, bool min_rule = false) {
   const std::size_t n = points.size();
   SearchOptions checked = options;
   checked.horizon = *std::max_element(radii.begin(), radii.end());
@@ -134,6 +135,7 @@ Rows gather_on_cpu(PointView points, std::span<const double> radii, const Search
   }
   std::vector<std::unique_ptr<CellIndex>> indexes;
   std::vector<ScratchBuffer<double>> row_radius;  // per class, by sorted position: the members' radii, 0 elsewhere
+  std::vector<ScratchBuffer<double>> own_threshold;  // min rule, per class, by sorted position: every point's
   std::vector<detail::RadiusClass> classes;
   Stopwatch clock;
   for (int c = 0; c < most_classes; ++c) {
@@ -148,6 +150,13 @@ Rows gather_on_cpu(PointView points, std::span<const double> radii, const Search
       radius[static_cast<std::size_t>(p)] = class_of[i] == c ? radii[i] : 0.0;
     }
     classes.push_back({&index, radius.data()});
+    if (min_rule) {
+      ScratchBuffer<double>& limit = own_threshold.emplace_back(n + CellIndex::padding, 0.0);
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+      for (std::int64_t p = 0; p < count; ++p)
+        limit[static_cast<std::size_t>(p)] = metric_threshold(options.metric, radii[static_cast<std::size_t>(order[p])]);
+      classes.back().candidate_threshold = limit.data();
+    }
   }
   part.horizon = checked.horizon;
   stats.grid_seconds += clock.lap();
@@ -367,9 +376,12 @@ Rows search_rows(PointView points, std::span<const double> radii, RadiusRule rul
   const Backend backend = effective_backend(options);
   const bool periodic = options.box[0] > 0 || options.box[1] > 0 || options.box[2] > 0;
   const int threads = filter_threads(options);
-  Rows gathered = (backend == Backend::serial || backend == Backend::openmp) && !periodic
-                      ? gather_on_cpu(points, radii, options, threads, stats)
-                      : gather<M>(points, radii, points, true, options, threads, stats);
+  const bool on_cpu = (backend == Backend::serial || backend == Backend::openmp) && !periodic;
+  // Full min rows straight from the search: d < min(r_i, r_j) is within r_i.
+  if (on_cpu && rule == RadiusRule::min && !options.half)
+    return gather_on_cpu(points, radii, options, threads, stats, true);
+  Rows gathered = on_cpu ? gather_on_cpu(points, radii, options, threads, stats)
+                         : gather<M>(points, radii, points, true, options, threads, stats);
   if (rule == RadiusRule::gather) return gathered;
   Stopwatch clock;
   Rows scattered = transpose(gathered, threads);
