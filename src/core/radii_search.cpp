@@ -368,6 +368,32 @@ int filter_threads(const SearchOptions& options) {
   return effective_backend(options) == Backend::serial ? 1 : options.threads > 0 ? options.threads : omp_get_max_threads();
 }
 
+/// Each sorted row i of a symmetric list less the ids up to i: its half list.
+Rows upper_half(const Rows& rows, int threads) {
+  const auto n = static_cast<std::int64_t>(rows.offsets.size()) - 1;
+  auto above = [&](std::int64_t i) {
+    const point_id* first = rows.ids.data() + rows.offsets[static_cast<std::size_t>(i)];
+    const point_id* last = rows.ids.data() + rows.offsets[static_cast<std::size_t>(i) + 1];
+    return std::pair{std::upper_bound(first, last, static_cast<point_id>(i)), last};
+  };
+  Rows out;
+  out.offsets.resize(rows.offsets.size());
+  out.offsets[0] = 0;
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto [first, last] = above(i);
+    out.offsets[static_cast<std::size_t>(i) + 1] = last - first;
+  }
+  detail::inclusive_scan(out.offsets.data(), out.offsets.size(), threads);
+  out.ids.resize(static_cast<std::size_t>(out.offsets.back()));
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto [first, last] = above(i);
+    std::copy(first, last, out.ids.begin() + out.offsets[static_cast<std::size_t>(i)]);
+  }
+  return out;
+}
+
 template <Metric M>
 Rows search_rows(PointView points, std::span<const double> radii, RadiusRule rule, const SearchOptions& options,
                  SearchStats& stats) {
@@ -377,9 +403,15 @@ Rows search_rows(PointView points, std::span<const double> radii, RadiusRule rul
   const bool periodic = options.box[0] > 0 || options.box[1] > 0 || options.box[2] > 0;
   const int threads = filter_threads(options);
   const bool on_cpu = (backend == Backend::serial || backend == Backend::openmp) && !periodic;
-  // Full min rows straight from the search: d < min(r_i, r_j) is within r_i.
-  if (on_cpu && rule == RadiusRule::min && !options.half)
-    return gather_on_cpu(points, radii, options, threads, stats, true);
+  // Min rows straight from the search (d < min(r_i, r_j) is within r_i), halved after.
+  if (on_cpu && rule == RadiusRule::min) {
+    Rows rows = gather_on_cpu(points, radii, options, threads, stats, true);
+    if (!options.half) return rows;
+    Stopwatch clock;
+    rows = upper_half(rows, threads);
+    stats.search_seconds += clock.lap();
+    return rows;
+  }
   Rows gathered = on_cpu ? gather_on_cpu(points, radii, options, threads, stats)
                          : gather<M>(points, radii, points, true, options, threads, stats);
   if (rule == RadiusRule::gather) return gathered;
