@@ -114,15 +114,14 @@ std::vector<std::vector<point_id>> radius_classes(std::span<const double> radii)
 Rows gather_on_cpu(PointView points, std::span<const double> radii, const SearchOptions& options, int threads,
                    SearchStats& stats, bool min_rule = false) {
   const std::size_t n = points.size();
-  SearchOptions checked = options;
-  checked.horizon = *std::max_element(radii.begin(), radii.end());
-  detail::validate_search(points, checked);
-  SearchOptions part = options;
+  SearchOptions part = options;  // the classes' passes: full sorted rows within the largest radius
+  part.horizon = *std::max_element(radii.begin(), radii.end());
   part.half = false;
   part.sort_rows = true;
+  detail::validate_search(points, part);
   // Each point's class and each class's largest radius, on every thread (serial steps cost
   // as much as the search on 16 cores).
-  const double largest = checked.horizon;
+  const double largest = part.horizon;
   const auto count = static_cast<std::int64_t>(n);
   ScratchBuffer<std::uint8_t> class_of(n);
   double class_largest[most_classes] = {};
@@ -158,7 +157,6 @@ Rows gather_on_cpu(PointView points, std::span<const double> radii, const Search
       classes.back().candidate_threshold = limit.data();
     }
   }
-  part.horizon = checked.horizon;
   stats.grid_seconds += clock.lap();
   auto [offsets, ids] = detail::search_radius_classes(classes, part, threads).release();
   stats.search_seconds += clock.lap();
