@@ -86,7 +86,8 @@ inline Reach ReachAlong(double t, std::int64_t cell, double reach, int k) {
           static_cast<int>(std::clamp(high, 0.0, static_cast<double>(k)))};
 }
 
-template <Metric M, int D, IdTest Ids, bool Fill>
+/// Radii: pass.row_radius is set (compiled apart, so the one-horizon passes carry none of it).
+template <Metric M, int D, IdTest Ids, bool Fill, bool Radii = false>
 void VisitCells(const FamilyPass& pass, CellRun run) {
   const hn::ScalableTag<double> d;
   const hn::Rebind<point_id, decltype(d)> di;  // one id lane per coordinate lane
@@ -109,7 +110,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
   // radius is a quarter of the class's largest meets about 3.4 of the 27 cells, k = 1). A row
   // longer than the sorting network is taken from the cell's sorted stencil instead.
   const int k = index.grid().cells_per_horizon, width = 2 * k + 1, kz = D == 3 ? k : 0;
-  std::vector<CellIndex::Range> cells(pass.row_radius ? static_cast<std::size_t>(index.max_stencil_cells()) : 0);
+  std::vector<CellIndex::Range> cells(Radii ? static_cast<std::size_t>(index.max_stencil_cells()) : 0);
   constexpr std::int64_t short_row = ShortRowCapacity<point_id>();
   constexpr std::int64_t lookahead = 16;
 
@@ -127,7 +128,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
         const auto [first, last] = index.rows_of(c);
         if (std::none_of(order + first, order + last, in_batch)) continue;
       }
-    if (pass.row_radius) {  // per-point radii: only the cells holding a point with a row here
+    if constexpr (Radii) {  // only the cells holding a point with a row here
       const auto [first, last] = index.rows_of(c);
       if (std::none_of(pass.row_radius + first, pass.row_radius + last, [](double r) { return r > 0; })) continue;
     }
@@ -146,8 +147,8 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       if (!gathered) sorted.gather(index, c);
       gathered = true;
     };
-    if (sorted_stencil && !pass.row_radius) gather();
-    if (pass.row_radius) index.stencil_cells(c, cells.data());
+    if (sorted_stencil && !Radii) gather();
+    if constexpr (Radii) index.stencil_cells(c, cells.data());
     const auto& cell = index.cell_coord(c);  // (cz, cy, cx)
     const auto [first, last] = index.rows_of(c);
     for (std::int64_t p = first; p < last; ++p) {
@@ -164,7 +165,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       // Per-point radii: this row's own threshold, or no row.
       auto row_threshold = threshold;
       std::int64_t row_self_found = self_found;
-      if (pass.row_radius) {
+      if constexpr (Radii) {
         const double radius = pass.row_radius[p];
         if (!(radius > 0)) continue;
         const double row_limit = metric_threshold(M, radius);
@@ -175,8 +176,8 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       const auto id = hn::Set(di, self);
       point_id* const row = row_buffer.data();  // empty when counting
       std::int64_t found = 0;
-      bool sorted_row = sorted_stencil && !pass.row_radius;  // found in id order from the sorted stencil
-      if (Fill && options.sort_rows && pass.row_radius && !pass.candidate_threshold &&
+      bool sorted_row = sorted_stencil && !Radii;  // found in id order from the sorted stencil
+      if (Fill && Radii && options.sort_rows && !pass.candidate_threshold &&
           offsets[self + 1] - offsets[self] + row_self_found > short_row) {
         gather();
         sorted_row = true;
@@ -184,7 +185,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       if (sorted_row) {
         found = TestCandidates<M, D, Ids, Fill>(px, py, pz, id, row_threshold, sorted.coords(0), sorted.coords(1),
                                                  sorted.coords(2), sorted.ids(), 0, sorted.size(), row);
-      } else if (pass.row_radius) {
+      } else if constexpr (Radii) {
         const Grid& grid = index.grid();
         const double reach = pass.row_radius[p] * grid.inverse_side;
         Reach along[3] = {{0, 0}, {0, 0}, {0, 0}};
@@ -361,7 +362,9 @@ template <bool Fill, Metric M, int D>
 void VisitHalf(const FamilyPass& pass, CellRun run) {
   // Full lists drop `self` after the tests where the row is sorted (or only counted), so its
   // place is found by a binary search.
-  if (pass.options->half)
+  if (pass.row_radius)  // full sorted rows, each within its own radius
+    VisitCells<M, D, IdTest::none, Fill, true>(pass, run);
+  else if (pass.options->half)
     VisitCells<M, D, IdTest::above_self, Fill>(pass, run);
   else if (!Fill || pass.options->sort_rows)
     VisitCells<M, D, IdTest::none, Fill>(pass, run);
