@@ -11,7 +11,9 @@
 #include <string>
 #include <tuple>
 
+#include "bond_filter_oracle.hpp"
 #include "datasets.hpp"
+#include "horizon/bond_filter.hpp"
 #include "horizon/generate.hpp"
 #include "horizon/oracle.hpp"
 #include "horizon/radii.hpp"
@@ -91,6 +93,39 @@ TEST(SimdTargets, VerletRefreshMatchesBruteForceOnEveryTarget) {
                 << hwy::TargetName(target) << " " << data.name << " " << metric_name(metric) << (half ? " half" : "");
           }
   });
+}
+
+// Bond filters test a row's bonds in lanes, from masks gathered by id (and `cuts` for the bonds
+// the masks leave open): random shapes over clouds (rows of every length, tails of every size)
+// and shapes through lattice points, on every target.
+TEST(SimdTargets, BondFiltersMatchBruteForceOnEveryTarget) {
+  std::mt19937_64 rng(11);
+  struct Scene {
+    std::string name;
+    PointSet points;
+    std::vector<BondFilter> filters;
+    double horizon;
+  };
+  std::vector<Scene> scenes;
+  for (int dims : {2, 3})
+    scenes.push_back({"cloud " + std::to_string(dims) + "-D", random_cloud(3000, dims, 5), random_filters(rng, 20, dims),
+                      dims == 3 ? 1.0 : 0.4});
+  for (double offset : {0.0, 1e6}) {
+    auto [points, filters] = shapes_on_lattice(offset);
+    scenes.push_back({"lattice at " + std::to_string(offset), std::move(points), std::move(filters), 1.8});
+  }
+  for (const Scene& scene : scenes)
+    for (bool half : {false, true}) {
+      SearchOptions options;
+      options.horizon = scene.horizon;
+      options.half = half;
+      const NeighborList list = search(scene.points.view(), options);
+      const NeighborList expected = brute_force_filter(list, scene.points, scene.filters);
+      for_each_target([&](std::int64_t target) {
+        EXPECT_EQ(filter_bonds(list, scene.points.view(), scene.filters, options.horizon), expected)
+            << hwy::TargetName(target) << " " << scene.name << (half ? " half" : "");
+      });
+    }
 }
 
 // Rows of every length from 0 to 140 ids, arriving in random id order: every size of the

@@ -9,11 +9,15 @@
 
 #include <omp.h>
 
+#include "bond_kernel.hpp"
 #include "select_entries.hpp"
 #include "horizon/error.hpp"
 #include "horizon/grid.hpp"
 
 namespace horizon {
+
+using detail::BondMasks;
+using detail::DecideBond;
 
 namespace {
 
@@ -87,19 +91,9 @@ bool cuts(const Shape& s, const Vec& a, const Vec& b) {
 
 Vec point(PointView p, std::size_t i) { return {p(i, 0), p(i, 1), p.dims() == 3 ? p(i, 2) : 0.0}; }
 
-/// Per point, which filters' planes it lies strictly above and below (bit f), which it is
-/// near: within `reach` of the plane and of the shape's extent, and, of those, which it lies
-/// deep within: its projection on the plane inside the shape by a margin far above rounding.
-/// A bond can only cross filter f when its ends are not both above nor both below, and, when no
-/// longer than `reach`, only when both are near f (so rows of points near no filter are kept
-/// whole). A bond whose ends lie strictly on both sides of f and deep within it crosses f
-/// inside the shape (the crossing lies between the ends' projections, and the shape is convex):
-/// cut without `cuts`. One struct per point: a bond's test reads its other end's masks from one
-/// cache line.
-struct Sides {
-  std::uint64_t above = 0, below = 0, near = 0, deep = 0;
-};
-
+/// A bond can only cross filter f when its ends are not both above nor both below its plane,
+/// and, when no longer than `reach`, only when both are near f (so rows of points near no filter
+/// are kept whole); the ends' masks (BondMasks) decide most bonds near f (keep_bonds).
 bool within_reach(const Shape& s, const Vec& x, double side, double reach) {
   if (!(std::abs(side) < reach)) return false;
   if (!s.disk) {
@@ -137,30 +131,33 @@ double deep_margin(const Shape& s, const Bounds& box) {
   return scale * vectors * 0x1p-36;
 }
 
-/// `margin`: deep_margin of each shape.
-ScratchBuffer<Sides> sides_of(PointView points, const std::vector<Shape>& shapes, const std::vector<double>& margin,
-                              double reach, int threads) {
+/// Each point's BondMasks for shapes[first, first + 16) (at most); `margin`: deep_margin of each shape.
+ScratchBuffer<std::uint64_t> masks_of(PointView points, const std::vector<Shape>& shapes, std::size_t first,
+                                      const std::vector<double>& margin, double reach, int threads) {
   const auto n = static_cast<std::int64_t>(points.size());
-  ScratchBuffer<Sides> sides(points.size());  // not zeroed: each is written once below
+  const std::size_t last = std::min(shapes.size(), first + BondMasks::filters);
+  ScratchBuffer<std::uint64_t> masks(points.size());  // not zeroed: each is written once below
   // A margin for the rounding of the dot products (bond lengths and offsets are O(reach) here).
   const double padded = reach > 0 ? reach * (1 + 1e-6) : std::numeric_limits<double>::infinity();
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
   for (std::int64_t i = 0; i < n; ++i) {
     const Vec x = point(points, static_cast<std::size_t>(i));
-    Sides s;
-    for (std::size_t f = 0; f < shapes.size(); ++f) {
+    std::uint64_t m = 0;
+    for (std::size_t f = first; f < last; ++f) {
       const double side = side_of(shapes[f], x);
-      s.above |= std::uint64_t{side > 0} << f;
-      s.below |= std::uint64_t{side < 0} << f;
       // Only a bond with both ends near f can cross it: deep is of no use to the others.
       const bool near = within_reach(shapes[f], x, side, padded);
-      s.near |= std::uint64_t{near} << f;
-      s.deep |= std::uint64_t{near && deep_within(shapes[f], x, margin[f])} << f;
+      const bool deep = near && deep_within(shapes[f], x, margin[f]);
+      const std::size_t bit = f - first;
+      m |= (std::uint64_t{side > 0} << BondMasks::above | std::uint64_t{side < 0} << BondMasks::below |
+            std::uint64_t{near} << BondMasks::near | std::uint64_t{deep} << BondMasks::deep) << bit;
     }
-    sides[static_cast<std::size_t>(i)] = s;
+    masks[static_cast<std::size_t>(i)] = m;
   }
-  return sides;
+  return masks;
 }
+
+constexpr std::uint64_t near_field = std::uint64_t{0xFFFF} << BondMasks::near;
 
 }  // namespace
 
@@ -169,6 +166,40 @@ bool cuts(const BondFilter& filter, const double* a, const double* b) {
 }
 
 namespace {
+
+/// The bonds of `list` that cross none of shapes[first, first + 16) (at most).
+NeighborList filter_some(NeighborList list, PointView rows, PointView columns, bool one_set,
+                         const std::vector<Shape>& shapes, std::size_t first, const std::vector<double>& margin,
+                         double reach, int threads) {
+  const ScratchBuffer<std::uint64_t> row_masks = masks_of(rows, shapes, first, margin, reach, threads);
+  const ScratchBuffer<std::uint64_t> column_masks =
+      one_set ? ScratchBuffer<std::uint64_t>{} : masks_of(columns, shapes, first, margin, reach, threads);
+  const std::uint64_t* column = one_set ? row_masks.data() : column_masks.data();
+
+  // The bond from row i to id j that the masks left open, decided by `cuts`.
+  struct Row {
+    const Shape* shapes;
+    PointView rows, columns;
+    bool one_set;
+    std::size_t i;
+  };
+  const DecideBond decide = [](const void* context, point_id j, std::uint32_t filters) {
+    const Row& row = *static_cast<const Row*>(context);
+    Vec a = point(row.rows, row.i), b = point(row.columns, static_cast<std::size_t>(j));
+    if (row.one_set && static_cast<std::size_t>(j) < row.i) std::swap(a, b);  // a: the smaller id's end
+    for (; filters; filters &= filters - 1)
+      if (cuts(row.shapes[std::countr_zero(filters)], a, b)) return false;
+    return true;
+  };
+  // Rows of points near no filter (with a known reach) need no tests.
+  return detail::compact_rows(
+      std::move(list), [&](std::size_t i) { return (row_masks[i] & near_field) == 0; },
+      [&](std::size_t i, point_id* ids, std::int64_t count) {
+        const Row row{shapes.data() + first, rows, columns, one_set, i};
+        return detail::keep_bonds(row_masks[i], column, ids, count, decide, &row);
+      },
+      threads);
+}
 
 /// one_set: `columns` is `rows` (ids and rows index one point set).
 NeighborList filter(NeighborList list, PointView rows, PointView columns, bool one_set,
@@ -186,29 +217,10 @@ NeighborList filter(NeighborList list, PointView rows, PointView columns, bool o
   const Bounds box = one_set ? bounds_of(rows, threads) : bounds_of(rows, columns, threads);
   std::vector<double> margin(shapes.size());
   for (std::size_t f = 0; f < shapes.size(); ++f) margin[f] = deep_margin(shapes[f], box);
-  const ScratchBuffer<Sides> row_sides = sides_of(rows, shapes, margin, reach, threads);
-  const ScratchBuffer<Sides> column_sides =
-      one_set ? ScratchBuffer<Sides>{} : sides_of(columns, shapes, margin, reach, threads);
-  const Sides* col = one_set ? row_sides.data() : column_sides.data();
-
-  const std::uint64_t all = filters.size() == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << filters.size()) - 1;
-  // Whether the bond i-j survives every filter whose plane it may cross.
-  auto kept = [&](std::size_t i, point_id j) {
-    const Sides &at_i = row_sides[i], &at_j = col[j];
-    const std::uint64_t across = (at_i.above & at_j.below) | (at_i.below & at_j.above);
-    if (across & at_i.deep & at_j.deep) return false;
-    const std::uint64_t same_side = (at_i.above & at_j.above) | (at_i.below & at_j.below);
-    std::uint64_t candidates = ~same_side & at_i.near & at_j.near & all;
-    if (!candidates) return true;
-    Vec a = point(rows, i), b = point(columns, static_cast<std::size_t>(j));
-    if (one_set && static_cast<std::size_t>(j) < i) std::swap(a, b);  // a: the smaller id's end
-    for (; candidates; candidates &= candidates - 1)
-      if (cuts(shapes[static_cast<std::size_t>(std::countr_zero(candidates))], a, b)) return false;
-    return true;
-  };
-
-  // Rows of points near no filter (with a known reach) need no tests.
-  return detail::select_entries(std::move(list), [&](std::size_t i) { return row_sides[i].near == 0; }, kept, threads);
+  // Sixteen filters at a time: a bond is kept when it crosses none of any group.
+  for (std::size_t first = 0; first < shapes.size(); first += BondMasks::filters)
+    list = filter_some(std::move(list), rows, columns, one_set, shapes, first, margin, reach, threads);
+  return list;
 }
 
 }  // namespace
