@@ -131,33 +131,45 @@ double deep_margin(const Shape& s, const Bounds& box) {
   return scale * vectors * 0x1p-36;
 }
 
+constexpr std::uint64_t near_field = std::uint64_t{0xFFFF} << BondMasks::near;
+
 /// Each point's BondMasks for shapes[first, first + 16) (at most); `margin`: deep_margin of each shape.
 ScratchBuffer<std::uint64_t> masks_of(PointView points, const std::vector<Shape>& shapes, std::size_t first,
                                       const std::vector<double>& margin, double reach, int threads) {
-  const auto n = static_cast<std::int64_t>(points.size());
-  const std::size_t last = std::min(shapes.size(), first + BondMasks::filters);
+  detail::Planes planes{};
+  planes.count = static_cast<int>(std::min(shapes.size() - first, std::size_t{BondMasks::filters}));
+  for (int f = 0; f < planes.count; ++f)
+    for (int a = 0; a < 3; ++a) {
+      planes.origin[a][f] = shapes[first + static_cast<std::size_t>(f)].origin[a];
+      planes.normal[a][f] = shapes[first + static_cast<std::size_t>(f)].normal[a];
+    }
   ScratchBuffer<std::uint64_t> masks(points.size());  // not zeroed: each is written once below
   // A margin for the rounding of the dot products (bond lengths and offsets are O(reach) here).
   const double padded = reach > 0 ? reach * (1 + 1e-6) : std::numeric_limits<double>::infinity();
+  constexpr std::int64_t block = 4096;
+  const auto blocks = static_cast<std::int64_t>((points.size() + block - 1) / block);
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-  for (std::int64_t i = 0; i < n; ++i) {
-    const Vec x = point(points, static_cast<std::size_t>(i));
-    std::uint64_t m = 0;
-    for (std::size_t f = first; f < last; ++f) {
-      const double side = side_of(shapes[f], x);
-      // Only a bond with both ends near f can cross it: deep is of no use to the others.
-      const bool near = within_reach(shapes[f], x, side, padded);
-      const bool deep = near && deep_within(shapes[f], x, margin[f]);
-      const std::size_t bit = f - first;
-      m |= (std::uint64_t{side > 0} << BondMasks::above | std::uint64_t{side < 0} << BondMasks::below |
-            std::uint64_t{near} << BondMasks::near | std::uint64_t{deep} << BondMasks::deep) << bit;
+  for (std::int64_t b = 0; b < blocks; ++b) {
+    const auto begin = static_cast<std::size_t>(b * block), end = std::min(points.size(), begin + block);
+    detail::plane_sides(points, begin, end, planes, padded, masks.data());
+    // Of the planes a point is close to, the shapes it is near (deep is of no use to the others:
+    // only a bond with both ends near f can cross it).
+    for (std::size_t i = begin; i < end; ++i) {
+      std::uint64_t close = masks[i] >> BondMasks::near, near = 0, deep = 0;
+      if (!close) continue;
+      const Vec x = point(points, i);
+      for (; close; close &= close - 1) {
+        const auto f = static_cast<std::size_t>(std::countr_zero(close));
+        const Shape& shape = shapes[first + f];
+        if (!within_reach(shape, x, side_of(shape, x), padded)) continue;
+        near |= std::uint64_t{1} << f;
+        deep |= std::uint64_t{deep_within(shape, x, margin[first + f])} << f;
+      }
+      masks[i] = (masks[i] & ~near_field) | near << BondMasks::near | deep << BondMasks::deep;
     }
-    masks[static_cast<std::size_t>(i)] = m;
   }
   return masks;
 }
-
-constexpr std::uint64_t near_field = std::uint64_t{0xFFFF} << BondMasks::near;
 
 }  // namespace
 

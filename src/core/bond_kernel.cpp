@@ -1,4 +1,5 @@
-// keep_bonds() (bond_kernel.hpp) for each instruction set: the masks of a vector of bonds'
+// plane_sides() and keep_bonds() (bond_kernel.hpp) for each instruction set. A point's sides of
+// all planes are one or two vectors of planes. The masks of a vector of bonds'
 // other ends are gathered by id, every field tested in lanes, and the kept ids packed to the
 // front of the row with a register compress or a table shuffle (store_selected-inl.h).
 #undef HWY_TARGET_INCLUDE
@@ -18,6 +19,35 @@ namespace horizon::detail {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
+void PlaneSides(PointView points, std::size_t begin, std::size_t end, const Planes& planes, double reach,
+                std::uint64_t* masks) {
+  const hn::ScalableTag<double> d;
+  const std::size_t lanes = hn::Lanes(d);
+  const auto zero = hn::Zero(d), limit = hn::Set(d, reach);
+  const bool flat = points.dims() == 2;
+  for (std::size_t i = begin; i < end; ++i) {
+    const auto x = hn::Set(d, points(i, 0)), y = hn::Set(d, points(i, 1)), z = hn::Set(d, flat ? 0.0 : points(i, 2));
+    std::uint64_t above = 0, below = 0, close = 0;
+    for (std::size_t f = 0; f < static_cast<std::size_t>(planes.count); f += lanes) {
+      auto along = [&](const decltype(x)& at, int a) {
+        return hn::Mul(hn::Sub(at, hn::LoadU(d, planes.origin[a] + f)), hn::LoadU(d, planes.normal[a] + f));
+      };
+      const auto side = hn::Add(hn::Add(along(x, 0), along(y, 1)), along(z, 2));
+      std::uint8_t bits[8] = {};
+      auto field = [&](const auto& mask) {
+        hn::StoreMaskBits(d, mask, bits);
+        return (std::uint64_t{bits[0]} | std::uint64_t{bits[1]} << 8) << f;
+      };
+      above |= field(hn::Gt(side, zero));
+      below |= field(hn::Lt(side, zero));
+      close |= field(hn::Lt(hn::Abs(side), limit));
+    }
+    const std::uint64_t used = (std::uint64_t{1} << planes.count) - 1;
+    masks[i] = (above & used) << BondMasks::above | (below & used) << BondMasks::below |
+               (close & used) << BondMasks::near;
+  }
+}
+
 std::int64_t KeepBonds(std::uint64_t own, const std::uint64_t* masks, point_id* ids, std::int64_t count,
                        DecideBond decide, const void* context) {
   const hn::ScalableTag<std::uint64_t> d;
@@ -33,17 +63,8 @@ std::int64_t KeepBonds(std::uint64_t own, const std::uint64_t* masks, point_id* 
   const auto deep = hn::Set(d, a_deep), off = hn::Set(d, a_above | a_below), on = hn::Set(d, a_on);
   const auto on_deep = hn::Set(d, a_on & a_deep), low = hn::Set(d, field), zero = hn::Zero(d);
 
-  std::int64_t kept = 0;
-  HWY_ALIGN point_id tail[HWY_MAX_BYTES / sizeof(std::uint64_t)];
-  for (std::int64_t e = 0; e < count; e += lanes) {
-    const std::int64_t valid = std::min(lanes, count - e);
-    const point_id* from = ids + e;
-    if (valid < lanes) {  // the last ids, padded with a valid one
-      std::fill_n(tail, lanes, ids[e]);
-      std::copy_n(ids + e, valid, tail);
-      from = tail;
-    }
-    const auto id = hn::LoadU(di, from);
+  // The bits of the lanes of `id` to keep, of those in `valid`.
+  auto keep_bits = [&](const hn::Vec<decltype(di)> id, unsigned valid) {
     const auto w = hn::GatherIndex(d, masks, hn::BitCast(d64, hn::PromoteTo(d64, id)));
     const auto b_above = hn::And(w, low), b_below = hn::And(hn::ShiftRight<BondMasks::below>(w), low);
     const auto b_near = hn::And(hn::ShiftRight<BondMasks::near>(w), low);
@@ -58,24 +79,36 @@ std::int64_t KeepBonds(std::uint64_t own, const std::uint64_t* masks, point_id* 
     const auto undecided = hn::AndNot(is_cut, hn::Ne(open, zero));
     std::uint8_t bytes[8] = {};
     hn::StoreMaskBits(d, hn::Not(hn::Or(is_cut, undecided)), bytes);
-    unsigned keep = (bytes[0] | unsigned{bytes[1]} << 8) & ((1u << valid) - 1);
+    unsigned keep = bytes[0] & valid;
     if (!hn::AllFalse(d, undecided)) [[unlikely]] {
       HWY_ALIGN std::uint64_t filters[HWY_MAX_BYTES / sizeof(std::uint64_t)];
+      HWY_ALIGN point_id lane_id[HWY_MAX_BYTES / sizeof(std::uint64_t)];
       hn::Store(open, d, filters);
+      hn::Store(id, di, lane_id);
       hn::StoreMaskBits(d, undecided, bytes);
-      for (unsigned u = (bytes[0] | unsigned{bytes[1]} << 8) & ((1u << valid) - 1); u; u &= u - 1) {
+      for (unsigned u = bytes[0] & valid; u; u &= u - 1) {
         const int lane = std::countr_zero(u);
-        if (decide(context, from[lane], static_cast<std::uint32_t>(filters[lane]))) keep |= 1u << lane;
+        if (decide(context, lane_id[lane], static_cast<std::uint32_t>(filters[lane]))) keep |= 1u << lane;
       }
     }
-    if (valid == lanes) {
-      // Writes up to a vector from `kept` <= e: only over ids already loaded.
-      StoreSelected(di, id, keep, ids + kept);
-    } else {
-      HWY_ALIGN point_id packed[HWY_MAX_BYTES / sizeof(std::uint64_t)];
-      StoreSelected(di, id, keep, packed);
-      std::copy_n(packed, std::popcount(keep), ids + kept);
-    }
+    return keep;
+  };
+
+  const unsigned all = (1u << lanes) - 1;
+  std::int64_t kept = 0, e = 0;
+  for (; e + lanes <= count; e += lanes) {
+    const auto id = hn::LoadU(di, ids + e);
+    const unsigned keep = keep_bits(id, all);
+    StoreSelected(di, id, keep, ids + kept);  // up to a vector from kept <= e: over ids already loaded
+    kept += std::popcount(keep);
+  }
+  if (e < count) {  // the last ids: lanes past the row read as id 0 and are not kept nor written
+    const auto valid = hn::FirstN(di, static_cast<std::size_t>(count - e));
+    const auto id = hn::MaskedLoad(valid, di, ids + e);
+    const unsigned keep = keep_bits(id, (1u << (count - e)) - 1);
+    HWY_ALIGN point_id packed[HWY_MAX_BYTES / sizeof(std::uint64_t)];
+    StoreSelected(di, id, keep, packed);
+    hn::BlendedStore(hn::Load(di, packed), hn::FirstN(di, static_cast<std::size_t>(std::popcount(keep))), di, ids + kept);
     kept += std::popcount(keep);
   }
   return kept;
@@ -88,7 +121,13 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 namespace horizon::detail {
 
+HWY_EXPORT(PlaneSides);
 HWY_EXPORT(KeepBonds);
+
+void plane_sides(PointView points, std::size_t begin, std::size_t end, const Planes& planes, double reach,
+                 std::uint64_t* masks) {
+  HWY_DYNAMIC_DISPATCH(PlaneSides)(points, begin, end, planes, reach, masks);
+}
 
 std::int64_t keep_bonds(std::uint64_t own, const std::uint64_t* masks, point_id* ids, std::int64_t count,
                         DecideBond decide, const void* context) {

@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "horizon/neighbor_list.hpp"
+#include "horizon/points.hpp"
 
 namespace horizon::detail {
 
@@ -16,6 +17,19 @@ struct BondMasks {
   static constexpr int above = 0, below = 16, near = 32, deep = 48;
   static constexpr int filters = 16;
 };
+
+/// Up to 16 planes, by coordinate: plane f passes through origin[.][f] with normal normal[.][f]
+/// (unused lanes 0).
+struct Planes {
+  double origin[3][BondMasks::filters], normal[3][BondMasks::filters];
+  int count;
+};
+
+/// For points [begin, end) (z = 0 in 2-D), masks[i]'s above and below fields, and in its near
+/// field the planes closer than `reach`: |side| < reach, with side = (x - origin) . normal
+/// computed as ((dx nx + dy ny) + dz nz), without fused multiply-adds, like the bond test's.
+void plane_sides(PointView points, std::size_t begin, std::size_t end, const Planes& planes, double reach,
+                 std::uint64_t* masks);
 
 /// Decides the bond to `id` from the filters' geometry: whether it crosses none of `filters`
 /// (bits), which the masks left open.
