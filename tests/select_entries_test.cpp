@@ -78,15 +78,33 @@ TEST(SelectEntries, InPlaceKeepsAListThatLosesNothing) {
   EXPECT_EQ(emptied.size(), list.size());
 }
 
-TEST(SelectEntries, MovesABlockDownInParallelWavesAsMemmoveWould) {
-  std::vector<point_id> data(3000000);
+// Rows that shrank moved to their new offsets, against memmoves row by row: 4 * 10^6 entries
+// (several waves), the first rows not moving, shifts from a few entries (saved where another
+// part writes) to more than a wave, emptied rows, any thread count.
+TEST(SelectEntries, MovesShrunkRowsDownAsMemmovesRowByRowWould) {
+  std::mt19937_64 rng(5);
+  const std::int64_t n = 200000;
+  std::vector<std::int64_t> from(n + 1), to(n + 1);
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto length = static_cast<std::int64_t>(rng() % 41);
+    const std::int64_t kept = i < 1000 ? length : i % 97 == 0 ? 0
+                             : i < n / 2   ? length - static_cast<std::int64_t>(rng() % (length / 8 + 1))
+                                           : length / 3;
+    from[i + 1] = from[i] + length;
+    to[i + 1] = to[i] + kept;
+  }
+  std::vector<point_id> data(static_cast<std::size_t>(from[n]));
   for (std::size_t e = 0; e < data.size(); ++e) data[e] = static_cast<point_id>(e);
-  for (const std::int64_t shift : {std::int64_t{70000}, std::int64_t{300001}, std::int64_t{2000000}}) {
-    std::vector<point_id> moved = data, expected = data;
-    const std::int64_t size = static_cast<std::int64_t>(data.size()) - shift - 5;
-    std::memmove(expected.data() + 3, expected.data() + 3 + shift, static_cast<std::size_t>(size) * sizeof(point_id));
-    detail::move_down(moved.data(), 3, 3 + shift, size, 7);
-    EXPECT_EQ(moved, expected) << "shift " << shift;
+  std::vector<point_id> expected = data;
+  for (std::int64_t i = 0; i < n; ++i)
+    std::memmove(expected.data() + to[i], expected.data() + from[i], static_cast<std::size_t>(to[i + 1] - to[i]) * sizeof(point_id));
+  expected.resize(static_cast<std::size_t>(to[n]));
+  ASSERT_GT(from[n] - to[n], std::int64_t{1} << 20) << "the largest shift should pass a wave";
+  for (const int threads : {1, 2, 3, 7, 16}) {
+    std::vector<point_id> moved = data;
+    detail::move_rows_down(moved.data(), from.data(), to.data(), n, threads);
+    moved.resize(static_cast<std::size_t>(to[n]));
+    EXPECT_EQ(moved, expected) << threads << " threads";
   }
 }
 

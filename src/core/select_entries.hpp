@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <bit>
 #include <cstring>
+#include <vector>
+
+#include <omp.h>
 
 #include "parallel_scan.hpp"
 #include "select_kernel.hpp"
@@ -73,24 +76,45 @@ NeighborList select_entries(const NeighborList& list, Keep keep, int threads) {
       threads);
 }
 
-/// Moves data[from, from + size) down to data[to, ...) (to <= from). In parallel, in waves no
-/// longer than the shift, so no part of a wave writes where another still reads; a small shift
-/// (many short waves) moves in one memmove.
-inline void move_down(point_id* data, std::int64_t to, std::int64_t from, std::int64_t size, int threads) {
-  const std::int64_t shift = from - to;
-  if (shift == 0 || size <= 0) return;
-  constexpr std::int64_t shortest_wave = std::int64_t{1} << 16;
-  if (threads <= 1 || shift < shortest_wave) {
-    std::memmove(data + to, data + from, static_cast<std::size_t>(size) * sizeof(point_id));
-    return;
-  }
-  for (std::int64_t done = 0; done < size; done += shift) {
-    const std::int64_t wave = std::min(shift, size - done);
-#pragma omp parallel for schedule(static) num_threads(threads)
-    for (int part = 0; part < threads; ++part) {
-      const std::int64_t first = wave * part / threads, last = wave * (part + 1) / threads;
-      if (last > first)
-        std::memcpy(data + to + done + first, data + from + done + first, static_cast<std::size_t>(last - first) * sizeof(point_id));
+/// Moves each row i < n of `data` down from from[i] to to[i] (to[i + 1] - to[i] entries),
+/// where to[i] <= from[i] and from[i] - to[i] grows with i (rows only shrank), as memmoves row
+/// by row in order would. Each entry is copied once: in waves of destinations, each split
+/// among the threads; a thread first saves what it will read from where a later part of its
+/// wave writes (less than the shift), the rows' gaps included.
+inline void move_rows_down(point_id* data, const std::int64_t* from, const std::int64_t* to, std::int64_t n,
+                           int threads) {
+  // Rows that do not move come first.
+  std::int64_t first = 0;
+  for (std::int64_t step = n; step > 0; step /= 2)
+    while (first + step <= n && from[first + step - 1] == to[first + step - 1]) first += step;
+  constexpr std::int64_t wave = std::int64_t{1} << 20;
+  for (std::int64_t begin = to[first]; begin < to[n]; begin += wave) {
+    const std::int64_t end = std::min(to[n], begin + wave);
+#pragma omp parallel num_threads(threads) if (threads > 1)
+    {
+      const int parts = omp_get_num_threads(), part = omp_get_thread_num();
+      const std::int64_t a = begin + (end - begin) * part / parts, b = begin + (end - begin) * (part + 1) / parts;
+      // The row holding destination a, and where this part's reads start and end.
+      const std::int64_t row = std::upper_bound(to + first, to + n + 1, a) - to - 1;
+      auto source = [&](std::int64_t r, std::int64_t at) { return from[r] + (at - to[r]); };
+      const std::int64_t last = b > a ? std::upper_bound(to + first, to + n + 1, b - 1) - to - 1 : row;
+      const std::int64_t saved_from = std::max(b, source(row, a)), saved_to = std::min(end, source(last, b));
+      std::vector<point_id> saved(static_cast<std::size_t>(std::max<std::int64_t>(0, saved_to - saved_from)));
+      if (!saved.empty()) std::memcpy(saved.data(), data + saved_from, saved.size() * sizeof(point_id));
+#pragma omp barrier
+      for (std::int64_t r = row, at = a; at < b; ++r) {
+        const std::int64_t piece = std::min(b, to[r + 1]) - at;
+        for (std::int64_t done = 0; done < piece;) {  // from data, from `saved`, then from data again
+          const std::int64_t s = source(r, at + done);
+          const bool in_saved = s >= saved_from && s < saved_to;
+          const std::int64_t next = in_saved ? saved_to : s < saved_from ? saved_from : piece + s;
+          const std::int64_t length = std::min(piece - done, next - s);
+          std::memmove(data + at + done, in_saved ? saved.data() + (s - saved_from) : data + s,
+                       static_cast<std::size_t>(length) * sizeof(point_id));
+          done += length;
+        }
+        at += piece;
+      }
     }
   }
 }
@@ -116,24 +140,7 @@ NeighborList compact_rows(NeighborList&& list, Whole whole, Compact compact, int
   inclusive_scan(offsets.data(), offsets.size(), threads);
   if (offsets[n] == old_offsets[n]) return NeighborList(std::move(old_offsets), std::move(indices), half);
 
-  // Rows move down (offsets[i] <= old_offsets[i]): each chunk of rows in parallel to where its
-  // first row lies, then the chunks in order to their places.
-  const std::int64_t chunks = std::max(1, threads);
-  auto chunk_first = [&](std::int64_t t) { return n * t / chunks; };
-#pragma omp parallel for schedule(static, 1) num_threads(threads) if (threads > 1)
-  for (std::int64_t t = 0; t < chunks; ++t) {
-    std::int64_t to = old_offsets[chunk_first(t)];
-    for (std::int64_t i = chunk_first(t); i < chunk_first(t + 1); ++i) {
-      const std::int64_t size = offsets[i + 1] - offsets[i];
-      if (to != old_offsets[i] && size > 0)
-        std::memmove(indices.data() + to, indices.data() + old_offsets[i], static_cast<std::size_t>(size) * sizeof(point_id));
-      to += size;
-    }
-  }
-  for (std::int64_t t = 0; t < chunks; ++t) {
-    const std::int64_t from = old_offsets[chunk_first(t)], to = offsets[chunk_first(t)];
-    move_down(indices.data(), to, from, offsets[chunk_first(t + 1)] - to, threads);
-  }
+  move_rows_down(indices.data(), old_offsets.data(), offsets.data(), n, threads);
   indices.resize(static_cast<std::size_t>(offsets[n]));
   return NeighborList(std::move(offsets), std::move(indices), half);
 }
