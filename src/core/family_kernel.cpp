@@ -105,7 +105,22 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
   const std::int64_t self_found = Ids == IdTest::none && limit > 0 ? 1 : 0;
   std::vector<CellIndex::Range> rows(static_cast<std::size_t>(index.max_stencil_rows()));
   SortedStencil sorted;
-  std::vector<point_id> row_buffer;  // a row is written here, then copied to its exact place
+  // A row is written to one of these, then sorted (or copied) to its exact place. Sorting
+  // right after the row's ids were stored stalled on store forwarding (the network's loads span
+  // several of the fill's compressed stores: AMD Zen 5, rows of ~15 ids, 47 ns a row filled and
+  // sorted against 28 ns when sorted one row later), so a row is sorted once the next is found.
+  std::vector<point_id> row_buffers[2];
+  int current = 0;
+  struct {
+    const point_id* row = nullptr;
+    std::int64_t count = 0, kept = 0;
+    point_id drop = -1;
+    point_id* place = nullptr;
+  } pending;
+  auto sort_pending = [&] {
+    if (pending.row) SortRowTo(pending.row, pending.count, pending.drop, pending.place, pending.kept);
+    pending.row = nullptr;
+  };
   // Per-point radii: each row tests only the stencil's cells its radius reaches (a point whose
   // radius is a quarter of the class's largest meets about 3.4 of the 27 cells, k = 1). A row
   // longer than the sorting network is taken from the cell's sorted stencil instead.
@@ -137,8 +152,10 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
     for (int r = 0; r < row_count; ++r) candidates += rows[r].end - rows[r].begin;
     // Padded for the vector stores of TestCandidates and the loads of SortShortRowTo.
     const std::int64_t row_padding = lanes + static_cast<std::int64_t>(hn::MaxLanes(hn::ScalableTag<point_id>()));
-    if (Fill && row_buffer.size() < static_cast<std::size_t>(candidates + row_padding))
-      row_buffer.resize(static_cast<std::size_t>(candidates + row_padding));
+    if (Fill && row_buffers[0].size() < static_cast<std::size_t>(candidates + row_padding)) {
+      sort_pending();
+      for (std::vector<point_id>& buffer : row_buffers) buffer.resize(static_cast<std::size_t>(candidates + row_padding));
+    }
     // Sorted rows: from a stencil sorted once per cell when it is large; small rows (m = 1.5:
     // 80 candidates, 18 neighbours) sort faster one by one, in registers.
     const bool sorted_stencil = Fill && options.sort_rows && candidates >= 256;
@@ -174,7 +191,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       }
       const auto px = hn::Set(d, x[p]), py = hn::Set(d, y[p]), pz = hn::Set(d, z[p]);
       const auto id = hn::Set(di, self);
-      point_id* const row = row_buffer.data();  // empty when counting
+      point_id* const row = row_buffers[current].data();  // empty when counting
       std::int64_t found = 0;
       bool sorted_row = sorted_stencil && !Radii;  // found in id order from the sorted stencil
       if (Fill && Radii && options.sort_rows && !pass.candidate_threshold &&
@@ -214,11 +231,17 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       if constexpr (Fill) {
         point_id* const place = pass.indices + (offsets[self] - base);
         if (options.sort_rows && !sorted_row) {
-          // In registers by a sorting network, `self` dropped, straight to its place; a longer
-          // row (rare: the stencil is sorted from 256 candidates) by insertion, then copied.
-          // Insertion mispredicts a branch per move on rows in no order: AMD Zen 5, m = 1.5,
-          // shuffled lattice 0.36-0.39 s to fill, 0.19-0.24 s with the network.
-          if (SortRowTo(row, found, row_self_found ? self : point_id{-1}, place, found - row_self_found)) continue;
+          // In registers by a sorting network, `self` dropped, straight to its place (once the
+          // next row is found); a longer row (rare: the stencil is sorted from 256 candidates)
+          // by insertion, then copied. Insertion mispredicts a branch per move on rows in no
+          // order: AMD Zen 5, m = 1.5, shuffled lattice 0.36-0.39 s to fill, 0.19-0.24 s with
+          // the network.
+          if (found <= short_row) {
+            sort_pending();
+            pending = {row, found, found - row_self_found, row_self_found ? self : point_id{-1}, place};
+            current ^= 1;
+            continue;
+          }
           insertion_sort(row, row + found);
         }
         std::int64_t before = found;  // the row goes to its place around `self`, if present
@@ -233,6 +256,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       }
     }
   }
+  if constexpr (Fill) sort_pending();
 }
 
 /// The count pass with each pair tested once (one point set, one horizon, no images): a point
