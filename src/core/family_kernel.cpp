@@ -105,20 +105,32 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
   const std::int64_t self_found = Ids == IdTest::none && limit > 0 ? 1 : 0;
   std::vector<CellIndex::Range> rows(static_cast<std::size_t>(index.max_stencil_rows()));
   SortedStencil sorted;
-  // A row is written to one of these, then sorted (or copied) to its exact place. Sorting
-  // right after the row's ids were stored stalled on store forwarding (the network's loads span
-  // several of the fill's compressed stores: AMD Zen 5, rows of ~15 ids, 47 ns a row filled and
-  // sorted against 28 ns when sorted one row later), so a row is sorted once the next is found.
+  // A row is written to one of these, then sorted or copied to its exact place once the next
+  // row is found: reading it right after its ids were stored stalled on store forwarding (the
+  // loads span several of the fill's compressed stores: AMD Zen 5, rows of ~15 ids, 47 ns a
+  // row filled and sorted at once against 28 ns one row later).
   std::vector<point_id> row_buffers[2];
   int current = 0;
   struct {
     const point_id* row = nullptr;
-    std::int64_t count = 0, kept = 0;
-    point_id drop = -1;
+    std::int64_t count = 0;
+    bool sort = false;       // by the network; else copied as it is
+    bool drop_self = false;  // the row holds `self`, which the list does not
+    point_id self = -1;
     point_id* place = nullptr;
   } pending;
-  auto sort_pending = [&] {
-    if (pending.row) SortRowTo(pending.row, pending.count, pending.drop, pending.place, pending.kept);
+  auto finish_pending = [&] {
+    const auto& [row, count, sort, drop_self, self, place] = pending;
+    if (!row) return;
+    if (sort) {
+      SortRowTo(row, count, drop_self ? self : point_id{-1}, place, count - drop_self);
+    } else {  // around `self`, if present
+      const std::int64_t before = drop_self ? std::lower_bound(row, row + count, self) - row : count;
+      if (before > 0) std::memcpy(place, row, static_cast<std::size_t>(before) * sizeof(point_id));
+      if (count > before + drop_self)
+        std::memcpy(place + before, row + before + drop_self,
+                    static_cast<std::size_t>(count - before - drop_self) * sizeof(point_id));
+    }
     pending.row = nullptr;
   };
   // Per-point radii: each row tests only the stencil's cells its radius reaches (a point whose
@@ -153,7 +165,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
     // Padded for the vector stores of TestCandidates and the loads of SortShortRowTo.
     const std::int64_t row_padding = lanes + static_cast<std::int64_t>(hn::MaxLanes(hn::ScalableTag<point_id>()));
     if (Fill && row_buffers[0].size() < static_cast<std::size_t>(candidates + row_padding)) {
-      sort_pending();
+      finish_pending();
       for (std::vector<point_id>& buffer : row_buffers) buffer.resize(static_cast<std::size_t>(candidates + row_padding));
     }
     // Sorted rows: from a stencil sorted once per cell when it is large; small rows (m = 1.5:
@@ -229,34 +241,21 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
                                                     rows[r].end, Fill ? row + found : nullptr);
       }
       if constexpr (Fill) {
-        point_id* const place = pass.indices + (offsets[self] - base);
-        if (options.sort_rows && !sorted_row) {
-          // In registers by a sorting network, `self` dropped, straight to its place (once the
-          // next row is found); a longer row (rare: the stencil is sorted from 256 candidates)
-          // by insertion, then copied. Insertion mispredicts a branch per move on rows in no
-          // order: AMD Zen 5, m = 1.5, shuffled lattice 0.36-0.39 s to fill, 0.19-0.24 s with
-          // the network.
-          if (found <= short_row) {
-            sort_pending();
-            pending = {row, found, found - row_self_found, row_self_found ? self : point_id{-1}, place};
-            current ^= 1;
-            continue;
-          }
-          insertion_sort(row, row + found);
-        }
-        std::int64_t before = found;  // the row goes to its place around `self`, if present
-        if (row_self_found) before = std::lower_bound(row, row + found, self) - row;
-        if (before > 0)  // an empty row buffer may have no storage at all
-          std::memcpy(place, row, static_cast<std::size_t>(before) * sizeof(point_id));
-        if (found > before + row_self_found)
-          std::memcpy(place + before, row + before + row_self_found,
-                      static_cast<std::size_t>(found - before - row_self_found) * sizeof(point_id));
+        // Sorted in registers by a network, `self` dropped, straight to its place; a longer row
+        // (rare: the stencil is sorted from 256 candidates) by insertion, then copied.
+        // Insertion mispredicts a branch per move on rows in no order: AMD Zen 5, m = 1.5,
+        // shuffled lattice 0.36-0.39 s to fill, 0.19-0.24 s with the network.
+        const bool to_sort = options.sort_rows && !sorted_row, network = to_sort && found <= short_row;
+        if (to_sort && !network) insertion_sort(row, row + found);
+        finish_pending();
+        pending = {row, found, network, row_self_found != 0, self, pass.indices + (offsets[self] - base)};
+        current ^= 1;
       } else {
         offsets[self + 1] = found - row_self_found;
       }
     }
   }
-  if constexpr (Fill) sort_pending();
+  if constexpr (Fill) finish_pending();
 }
 
 /// The count pass with each pair tested once (one point set, one horizon, no images): a point
