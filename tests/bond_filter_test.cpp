@@ -7,6 +7,8 @@
 #include <fstream>
 #include <random>
 
+#include <unistd.h>
+
 #include "horizon/bond_filter.hpp"
 #include "horizon/error.hpp"
 #include "horizon/generate.hpp"
@@ -118,7 +120,10 @@ TEST(BondFilter, QueryListsAreFilteredAgainstTheReferences) {
 class BondFilterJson : public ::testing::Test {
 protected:
   std::string file(const std::string& text) {
-    const auto path = std::filesystem::temp_directory_path() / ("horizon_filters_" + std::to_string(count_++) + ".json");
+    // Named by process and test: ctest runs this fixture's tests at once.
+    const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    const auto path = std::filesystem::temp_directory_path() /
+                      ("horizon_filters_" + std::to_string(::getpid()) + "_" + test + "_" + std::to_string(count_++) + ".json");
     std::ofstream(path) << text;
     return path.string();
   }
