@@ -125,7 +125,11 @@ protected:
     const auto path = std::filesystem::temp_directory_path() /
                       ("horizon_filters_" + std::to_string(::getpid()) + "_" + test + "_" + std::to_string(count_++) + ".json");
     std::ofstream(path) << text;
+    written_.push_back(path);
     return path.string();
+  }
+  void TearDown() override {
+    for (const auto& path : written_) std::filesystem::remove(path);
   }
   void expect_error(const std::string& text, const std::string& message) {
     try {
@@ -136,6 +140,7 @@ protected:
     }
   }
   int count_ = 0;
+  std::vector<std::filesystem::path> written_;
 };
 
 TEST_F(BondFilterJson, ReadsBothShapesAndNormalises) {
