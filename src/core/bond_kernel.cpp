@@ -102,13 +102,13 @@ std::int64_t KeepBonds(std::uint64_t own, const std::uint64_t* masks, point_id* 
     StoreSelected(di, id, keep, ids + kept);  // up to a vector from kept <= e: over ids already loaded
     kept += std::popcount(keep);
   }
-  if (e < count) {  // the last ids: lanes past the row read as id 0 and are not kept nor written
-    const auto valid = hn::FirstN(di, static_cast<std::size_t>(count - e));
-    const auto id = hn::MaskedLoad(valid, di, ids + e);
+  if (e < count) {  // the last ids, copied: a masked load or store is a whole one on some targets
+    HWY_ALIGN point_id last[HWY_MAX_BYTES / sizeof(std::uint64_t)] = {};  // id 0 past the row
+    std::copy_n(ids + e, count - e, last);
+    const auto id = hn::Load(di, last);
     const unsigned keep = keep_bits(id, (1u << (count - e)) - 1);
-    HWY_ALIGN point_id packed[HWY_MAX_BYTES / sizeof(std::uint64_t)];
-    StoreSelected(di, id, keep, packed);
-    hn::BlendedStore(hn::Load(di, packed), hn::FirstN(di, static_cast<std::size_t>(std::popcount(keep))), di, ids + kept);
+    StoreSelected(di, id, keep, last);
+    std::copy_n(last, std::popcount(keep), ids + kept);
     kept += std::popcount(keep);
   }
   return kept;
