@@ -109,7 +109,8 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
   // row is found: reading it right after its ids were stored stalled on store forwarding (the
   // loads span several of the fill's compressed stores: AMD Zen 5, rows of ~15 ids, 47 ns a
   // row filled and sorted at once against 28 ns one row later).
-  std::vector<point_id> row_buffers[2];
+  std::vector<point_id> row_buffers;  // two halves, one allocation (a call per run of cells)
+  std::size_t half = 0;
   int current = 0;
   struct {
     const point_id* row = nullptr;
@@ -164,9 +165,10 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
     for (int r = 0; r < row_count; ++r) candidates += rows[r].end - rows[r].begin;
     // Padded for the vector stores of TestCandidates and the loads of SortShortRowTo.
     const std::int64_t row_padding = lanes + static_cast<std::int64_t>(hn::MaxLanes(hn::ScalableTag<point_id>()));
-    if (Fill && row_buffers[0].size() < static_cast<std::size_t>(candidates + row_padding)) {
+    if (Fill && half < static_cast<std::size_t>(candidates + row_padding)) {
       finish_pending();
-      for (std::vector<point_id>& buffer : row_buffers) buffer.resize(static_cast<std::size_t>(candidates + row_padding));
+      half = static_cast<std::size_t>(candidates + row_padding);
+      row_buffers.resize(2 * half);
     }
     // Sorted rows: from a stencil sorted once per cell when it is large; small rows (m = 1.5:
     // 80 candidates, 18 neighbours) sort faster one by one, in registers.
@@ -203,7 +205,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       }
       const auto px = hn::Set(d, x[p]), py = hn::Set(d, y[p]), pz = hn::Set(d, z[p]);
       const auto id = hn::Set(di, self);
-      point_id* const row = row_buffers[current].data();  // empty when counting
+      point_id* const row = row_buffers.data() + current * half;  // empty when counting
       std::int64_t found = 0;
       bool sorted_row = sorted_stencil && !Radii;  // found in id order from the sorted stencil
       if (Fill && Radii && options.sort_rows && !pass.candidate_threshold &&
