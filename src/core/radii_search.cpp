@@ -11,6 +11,7 @@
 #include "../backends/backends.hpp"
 #include "family_search.hpp"
 #include "parallel_scan.hpp"
+#include "transpose_rows.hpp"
 #include "horizon/cell_index.hpp"
 #include "horizon/error.hpp"
 #include "horizon/grid.hpp"
@@ -249,47 +250,41 @@ Rows gather(PointView row_points, std::span<const double> radii, PointView id_po
   return out;
 }
 
-/// Row j of the transpose holds every i whose row holds j, ascending. The rows are split into
-/// parts, one per thread (at most 8: a counter per part and point); each part's entries per
-/// column are counted, so every part writes its i's of column j after those of the parts before.
+/// Row j of the transpose holds every i whose row holds j, ascending.
 Rows transpose(const Rows& rows, int threads) {
-  const auto n = static_cast<std::int64_t>(rows.offsets.size()) - 1;
-  const int parts = static_cast<int>(std::max<std::int64_t>(1, std::min<std::int64_t>({threads, 8, n})));
-  auto part_first = [&](int t) { return n * t / parts; };
-  // next[t * n + j]: the entries of column j in part t, then where part t writes the next one.
-  std::vector<std::int64_t> next(static_cast<std::size_t>(parts) * static_cast<std::size_t>(n), 0);
-  auto of_part = [&](int t) { return next.data() + static_cast<std::size_t>(t) * static_cast<std::size_t>(n); };
-#pragma omp parallel for schedule(static, 1) num_threads(parts) if (parts > 1)
-  for (int t = 0; t < parts; ++t) {
-    std::int64_t* count = of_part(t);
-    for (std::int64_t e = rows.offsets[static_cast<std::size_t>(part_first(t))];
-         e < rows.offsets[static_cast<std::size_t>(part_first(t + 1))]; ++e)
-      ++count[rows.ids[static_cast<std::size_t>(e)]];
-  }
   Rows out;
-  out.offsets.resize(static_cast<std::size_t>(n) + 1);
-  out.offsets[0] = 0;
-#pragma omp parallel for schedule(static) num_threads(parts) if (parts > 1)
-  for (std::int64_t j = 0; j < n; ++j) {
-    std::int64_t total = 0;
-    for (int t = 0; t < parts; ++t) {  // part t's first place within row j
-      const std::int64_t here = of_part(t)[j];
-      of_part(t)[j] = total;
-      total += here;
-    }
-    out.offsets[static_cast<std::size_t>(j) + 1] = total;
-  }
-  detail::inclusive_scan(out.offsets.data(), out.offsets.size(), parts);
-  out.ids.resize(rows.ids.size());
-#pragma omp parallel for schedule(static, 1) num_threads(parts) if (parts > 1)
-  for (int t = 0; t < parts; ++t) {
-    std::int64_t* place = of_part(t);
-    for (std::int64_t j = 0; j < n; ++j) place[j] += out.offsets[static_cast<std::size_t>(j)];
-    for (std::int64_t i = part_first(t); i < part_first(t + 1); ++i)
-      for (std::int64_t e = rows.offsets[static_cast<std::size_t>(i)]; e < rows.offsets[static_cast<std::size_t>(i) + 1]; ++e)
-        out.ids[static_cast<std::size_t>(place[rows.ids[static_cast<std::size_t>(e)]]++)] = static_cast<point_id>(i);
-  }
+  detail::transpose_rows(rows.offsets.data(), rows.ids.data(), static_cast<std::int64_t>(rows.offsets.size()) - 1,
+                         threads, out.offsets, out.ids);
   return out;
+}
+
+/// The union (Unite) or intersection of two ascending rows of distinct ids, written to `out`
+/// when Write; returns its length. The union takes no branch on the ids: std::set_union's
+/// compare mispredicted about every other id of rows whose ids interleave at random.
+template <bool Unite, bool Write>
+std::int64_t merge_rows(const point_id* a, const point_id* a_end, const point_id* b, const point_id* b_end,
+                        point_id* out) {
+  std::int64_t k = 0;
+  while (a < a_end && b < b_end) {
+    const point_id x = *a, y = *b;
+    if constexpr (Unite) {
+      if constexpr (Write) out[k] = std::min(x, y);
+      ++k;
+    } else if (x == y) {  // nothing written past the row's end: the next row may be another thread's
+      if constexpr (Write) out[k] = x;
+      ++k;
+    }
+    a += x <= y;
+    b += y <= x;
+  }
+  if constexpr (Unite) {
+    if constexpr (Write) {
+      out = std::copy(a, a_end, out + k);
+      std::copy(b, b_end, out);
+    }
+    k += (a_end - a) + (b_end - b);
+  }
+  return k;
 }
 
 /// Row i: the union (max) or intersection (min) of the sorted rows i of a and b; with `half`,
@@ -302,58 +297,29 @@ Rows combine(const Rows& a, const Rows& b, bool unite, bool half, int threads) {
     const point_id* last = r.ids.data() + r.offsets[static_cast<std::size_t>(i) + 1];
     return std::pair{above_only ? std::upper_bound(first, last, static_cast<point_id>(i)) : first, last};
   };
-  if (threads <= 1) {
-    Rows out;
-    out.offsets.assign(static_cast<std::size_t>(n) + 1, 0);
-    out.ids.reserve(unite ? a.ids.size() + b.ids.size() : std::min(a.ids.size(), b.ids.size()));
-    for (std::int64_t i = 0; i < n; ++i) {
-      const auto [fa, la] = row_of(a, i, half);
-      const auto [fb, lb] = row_of(b, i, half);
-      if (unite)
-        std::set_union(fa, la, fb, lb, std::back_inserter(out.ids));
-      else
-        std::set_intersection(fa, la, fb, lb, std::back_inserter(out.ids));
-      out.offsets[static_cast<std::size_t>(i) + 1] = static_cast<std::int64_t>(out.ids.size());
-    }
-    return out;
-  }
-  // Counts by the same merge, writing nowhere (copies share the count).
-  struct Counter {
-    std::int64_t* n;
-    Counter& operator*() { return *this; }
-    Counter& operator++() { return *this; }
-    Counter operator++(int) { return *this; }
-    Counter& operator=(point_id) {
-      ++*n;
-      return *this;
-    }
+  auto merge = [&](std::int64_t i, point_id* out) {
+    const auto [fa, la] = row_of(a, i, half);
+    const auto [fb, lb] = row_of(b, i, half);
+    if (unite) return out ? merge_rows<true, true>(fa, la, fb, lb, out) : merge_rows<true, false>(fa, la, fb, lb, out);
+    return out ? merge_rows<false, true>(fa, la, fb, lb, out) : merge_rows<false, false>(fa, la, fb, lb, out);
   };
   Rows out;
   out.offsets.resize(static_cast<std::size_t>(n) + 1);
   out.offsets[0] = 0;
-#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads) if (threads > 1)
-  for (std::int64_t i = 0; i < n; ++i) {
-    const auto [fa, la] = row_of(a, i, half);
-    const auto [fb, lb] = row_of(b, i, half);
-    std::int64_t count = 0;
-    if (unite)
-      std::set_union(fa, la, fb, lb, Counter{&count});
-    else
-      std::set_intersection(fa, la, fb, lb, Counter{&count});
-    out.offsets[static_cast<std::size_t>(i) + 1] = count;
+  if (threads <= 1) {
+    out.ids.resize(unite ? a.ids.size() + b.ids.size() : std::min(a.ids.size(), b.ids.size()));
+    for (std::int64_t i = 0; i < n; ++i)
+      out.offsets[static_cast<std::size_t>(i) + 1] =
+          out.offsets[static_cast<std::size_t>(i)] + merge(i, out.ids.data() + out.offsets[static_cast<std::size_t>(i)]);
+    out.ids.resize(static_cast<std::size_t>(out.offsets[static_cast<std::size_t>(n)]));
+    return out;
   }
+#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads) if (threads > 1)
+  for (std::int64_t i = 0; i < n; ++i) out.offsets[static_cast<std::size_t>(i) + 1] = merge(i, nullptr);
   detail::inclusive_scan(out.offsets.data(), out.offsets.size(), threads);
   out.ids.resize(static_cast<std::size_t>(out.offsets[static_cast<std::size_t>(n)]));
 #pragma omp parallel for schedule(dynamic, 1024) num_threads(threads) if (threads > 1)
-  for (std::int64_t i = 0; i < n; ++i) {
-    const auto [fa, la] = row_of(a, i, half);
-    const auto [fb, lb] = row_of(b, i, half);
-    point_id* place = out.ids.data() + out.offsets[static_cast<std::size_t>(i)];
-    if (unite)
-      std::set_union(fa, la, fb, lb, place);
-    else
-      std::set_intersection(fa, la, fb, lb, place);
-  }
+  for (std::int64_t i = 0; i < n; ++i) merge(i, out.ids.data() + out.offsets[static_cast<std::size_t>(i)]);
   return out;
 }
 
