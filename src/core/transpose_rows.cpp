@@ -32,7 +32,7 @@ void transpose_rows(const std::int64_t* offsets, const point_id* ids, std::int64
   threads = std::max(threads, 1);
   // Each column's length, counted in up to 8 parts of the entries (a counter per part and point).
   const int parts = static_cast<int>(std::max<std::int64_t>(1, std::min<std::int64_t>({threads, 8, n})));
-  std::vector<std::int32_t> counts(static_cast<std::size_t>(parts) * static_cast<std::size_t>(n), 0);
+  ScratchBuffer<std::int32_t> counts(static_cast<std::size_t>(parts) * static_cast<std::size_t>(n), 0);
 #pragma omp parallel for schedule(static, 1) num_threads(parts) if (parts > 1)
   for (int t = 0; t < parts; ++t) {
     std::int32_t* count = counts.data() + static_cast<std::size_t>(t) * static_cast<std::size_t>(n);
