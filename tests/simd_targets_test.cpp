@@ -158,6 +158,40 @@ TEST(SimdTargets, RowsOfEveryLengthAreSortedOnEveryTarget) {
   });
 }
 
+// Large stencils (256 candidates or more) whose rows are sorted either by the network, when every
+// row of the cell fits it, or from the cell's sorted stencil, when one does not: a cloud whose
+// density grows along x, so rows grow from ~60 to ~250 ids and cells of both kinds alternate
+// (which also breaks and resumes the sorted stencil's slide along x).
+TEST(SimdTargets, LargeStencilsGiveSortedRowsWhateverTheirRowsLengths) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<double> xyz;
+  while (xyz.size() < 3 * 7000) {
+    const double x = 20.0 * unit(rng), y = 3.0 * unit(rng), z = 3.0 * unit(rng);
+    if (unit(rng) < (14.0 + 46.0 * x / 20.0) / 60.0) xyz.insert(xyz.end(), {x, y, z});
+  }
+  const PointView view(xyz.data(), xyz.size() / 3, 3);
+  SearchOptions options;
+  options.horizon = 1.0;
+  const NeighborList expected = brute_force(view, options);
+  std::size_t short_rows = 0, long_rows = 0;  // well within, and well beyond, AVX-512's network (128)
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    short_rows += expected.row_size(i) <= 100;
+    long_rows += expected.row_size(i) > 140;
+  }
+  ASSERT_GT(short_rows, 500u);
+  ASSERT_GT(long_rows, 500u);
+  for_each_target([&](std::int64_t target) {
+    for (Backend backend : {Backend::serial, Backend::openmp})
+      for (bool half : {false, true}) {
+        options.backend = backend;
+        options.half = half;
+        const NeighborList list = search(view, options);
+        EXPECT_EQ(list, half ? brute_force(view, options) : expected) << hwy::TargetName(target) << (half ? " half" : "");
+      }
+  });
+}
+
 // Per-point radii: each row tests only the cells its radius reaches, and a row longer than the
 // sorting network takes the cell's sorted stencil (gather) or is sorted otherwise (min). Dense clouds (rows up to ~1500 ids, stencils
 // of thousands) and a lattice whose points lie on cell faces and at distances equal to radii,

@@ -170,15 +170,23 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       half = static_cast<std::size_t>(candidates + row_padding);
       row_buffers.resize(2 * half);
     }
-    // Sorted rows: from a stencil sorted once per cell when it is large; small rows (m = 1.5:
-    // 80 candidates, 18 neighbours) sort faster one by one, in registers.
-    const bool sorted_stencil = Fill && options.sort_rows && candidates >= 256;
+    // Sorted rows: one by one in registers by the network when every row of the cell fits it
+    // (m = 1.5: 18 ids; m = 3.015: 118, within AVX-512's 128), else from the stencil sorted once
+    // per cell (a large one: a small stencil costs more to sort than its rows).
+    bool sorted_stencil = false;
+    if (Fill && !Radii && options.sort_rows && candidates >= 256) {
+      const auto [first, last] = index.rows_of(c);
+      for (std::int64_t p = first; p < last && !sorted_stencil; ++p) {
+        const point_id self = order[p];
+        sorted_stencil = static_cast<std::size_t>(self) < queries && offsets[self + 1] - offsets[self] + self_found > short_row;
+      }
+    }
     bool gathered = false;
     auto gather = [&] {
       if (!gathered) sorted.gather(index, c);
       gathered = true;
     };
-    if (sorted_stencil && !Radii) gather();
+    if (sorted_stencil) gather();
     if constexpr (Radii) index.stencil_cells(c, cells.data());
     const auto& cell = index.cell_coord(c);  // (cz, cy, cx)
     const auto [first, last] = index.rows_of(c);
@@ -207,7 +215,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       const auto id = hn::Set(di, self);
       point_id* const row = row_buffers.data() + current * half;  // empty when counting
       std::int64_t found = 0;
-      bool sorted_row = sorted_stencil && !Radii;  // found in id order from the sorted stencil
+      bool sorted_row = sorted_stencil;  // found in id order from the sorted stencil
       if (Fill && Radii && options.sort_rows && !pass.candidate_threshold &&
           offsets[self + 1] - offsets[self] + row_self_found > short_row) {
         gather();
