@@ -9,6 +9,7 @@
 #include "core/parallel_scan.hpp"
 #include "horizon/generate.hpp"
 #include "horizon/grid.hpp"
+#include <hwy/targets.h>
 using namespace horizon;
 using namespace horizon::detail;
 
@@ -52,6 +53,8 @@ int main(int argc, char** argv) {
   SearchOptions options;
   options.horizon = m * 0.1;
   options.sort_rows = getenv("UNSORTED") == nullptr;
+  options.half = getenv("HALF") != nullptr;
+  if (getenv("AVX2")) hwy::SetSupportedTargetsForTest(HWY_AVX2);
   const char* names[] = {"grid", "zero", "count0", "count1", "place", "scan", "alloc", "fill", "count_rows_all"};
   std::vector<std::vector<double>> t(9);
   long long entries = 0;
