@@ -2,12 +2,18 @@
 // cannot reach, backend agreement, float32 input, options, and errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <random>
+#include <set>
 
+#include "core/family_search.hpp"
 #include "datasets.hpp"
 #include "same_families.hpp"
+#include "horizon/cell_index.hpp"
 #include "horizon/error.hpp"
 #include "horizon/generate.hpp"
 #include "horizon/grid.hpp"
@@ -72,6 +78,55 @@ TEST(Backends, CountingEachPairOnceMatchesBruteForceOnAnyThreadCount) {
             EXPECT_EQ(search(data.points.view(), options), expected)
                 << data.name << " " << dims << "-D half " << half << " k " << k << " threads " << threads;
           }
+      }
+}
+
+// The count pass's blocks of one colour run at once: each occupied cell is in one block, and
+// no two blocks of a colour reach the same cell (layers z .. z + k, lines y - k .. y + k of
+// their cells: the upper stencil). Lattices thin and deep, at thread counts that cut slabs into
+// bands and that do not.
+TEST(CountPassBlocks, BlocksOfAColourWriteDisjointCells) {
+  for (const auto& [nx, ny, nz] : {std::array{30, 30, 30}, std::array{40, 40, 3}, std::array{6, 50, 40}})
+    for (const int k : {1, 2})
+      for (const int threads : {1, 2, 7, 16, 64}) {
+        SCOPED_TRACE(std::to_string(nx) + "x" + std::to_string(ny) + "x" + std::to_string(nz) + " k " +
+                     std::to_string(k) + " threads " + std::to_string(threads));
+        PointSet points{3, {}};
+        for (int z = 0; z < nz; ++z)
+          for (int y = 0; y < ny; ++y)
+            for (int x = 0; x < nx; ++x) points.xyz.insert(points.xyz.end(), {double(x), double(y), double(z)});
+        const Grid grid = Grid::fit(points.view(), 1.5, k);
+        const CellIndex index(points.view(), grid, 1);
+        std::vector<int> blocks_of_cell(index.occupied_cells(), 0);
+        std::int64_t lowest = grid.cells[1], highest = -1;  // occupied lines
+        for (std::size_t c = 0; c < index.occupied_cells(); ++c) {
+          lowest = std::min(lowest, index.cell_coord(c)[1]);
+          highest = std::max(highest, index.cell_coord(c)[1]);
+        }
+        std::size_t bands_cut = 0;  // blocks of fewer lines than the slab
+        for (const auto& colour : detail::count_pass_blocks(index, threads)) {
+          std::map<std::array<std::int64_t, 2>, std::size_t> reached;  // (layer, line) -> block
+          for (std::size_t b = 0; b < colour.size(); ++b) {
+            std::set<std::array<std::int64_t, 2>> cells;
+            std::int64_t low = highest, high = lowest;
+            for (const detail::CellRun run : colour[b])
+              for (std::size_t c = run.first; c < run.last; ++c) {
+                ++blocks_of_cell[c];
+                const auto [cz, cy, cx] = index.cell_coord(c);
+                for (std::int64_t dz = 0; dz <= k; ++dz)
+                  for (std::int64_t dy = -k; dy <= k; ++dy) cells.insert({cz + dz, cy + dy});
+                low = std::min(low, cy);
+                high = std::max(high, cy);
+              }
+            bands_cut += low > lowest || high < highest;
+            for (const auto& cell : cells) {
+              const auto [at, fresh] = reached.emplace(cell, b);
+              EXPECT_TRUE(fresh) << "layer " << cell[0] << " line " << cell[1] << ": blocks " << at->second << ", " << b;
+            }
+          }
+        }
+        EXPECT_TRUE(std::all_of(blocks_of_cell.begin(), blocks_of_cell.end(), [](int n) { return n == 1; }));
+        if (threads == 64 && nz == 30) EXPECT_GT(bands_cut, 0u);  // 64 threads: too few layers alone
       }
 }
 

@@ -1,6 +1,7 @@
 #include "family_search.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 
 #include "memory_check.hpp"
@@ -30,10 +31,6 @@ std::vector<CellRun> split_into_runs(const CellIndex& index, int threads) {
   return runs;
 }
 
-}  // namespace
-
-namespace {
-
 /// Slabs of whole layers of cells (CellIndex::layer) holding about equal numbers of points, 8
 /// per thread. An upper stencil reaches k layers up, so when every slab but the last spans at
 /// least k layers, a slab's pairs land in it and the next one only: slabs of one parity can be
@@ -53,6 +50,36 @@ std::vector<CellRun> split_into_slabs(const CellIndex& index, int threads) {
   if (first < cells) slabs.push_back(CellRun{first, cells});
   return slabs;
 }
+
+}  // namespace
+
+std::array<std::vector<CellBlock>, 4> count_pass_blocks(const CellIndex& index, int threads) {
+  const std::vector<CellRun> slabs = split_into_slabs(index, threads);
+  const Grid& grid = index.grid();
+  const std::int64_t lines = grid.cells[1], wanted = 8 * static_cast<std::int64_t>(threads);
+  const auto slab_count = static_cast<std::int64_t>(slabs.size());
+  std::int64_t bands = 1;
+  if (grid.dims == 3 && grid.dense && slab_count < wanted) {
+    const std::int64_t even = ((2 * wanted + slab_count - 1) / slab_count + 1) / 2 * 2;  // colours alike
+    bands = std::clamp<std::int64_t>(even, 1, std::max<std::int64_t>(1, lines / (2 * grid.cells_per_horizon)));
+  }
+  auto band_of = [&](std::size_t c) { return index.cell_coord(c)[1] * bands / lines; };
+  std::array<std::vector<CellBlock>, 4> colours;
+  for (std::size_t s = 0; s < slabs.size(); ++s) {
+    std::vector<CellBlock> blocks(static_cast<std::size_t>(bands));
+    for (std::size_t c = slabs[s].first; c < slabs[s].last;) {
+      std::size_t end = c + 1;
+      while (end < slabs[s].last && index.layer(end) == index.layer(c) && band_of(end) == band_of(c)) ++end;
+      blocks[static_cast<std::size_t>(band_of(c))].push_back(CellRun{c, end});
+      c = end;
+    }
+    for (std::size_t b = 0; b < blocks.size(); ++b)
+      if (!blocks[b].empty()) colours[s % 2 * 2 + b % 2].push_back(std::move(blocks[b]));
+  }
+  return colours;
+}
+
+namespace {
 
 /// Whether count_each_pair_once() gives the counts: one horizon, and every point holds a row
 /// but the periodic images. A pair counts for both sides at once; the images' counts are never
@@ -80,12 +107,11 @@ Buffer<std::int64_t> count_rows(FamilyPass& pass, const std::vector<CellRun>& ru
     ScratchBuffer<std::int64_t> counts(index.point_count() + CellIndex::padding);
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
     for (std::int64_t p = 0; p < static_cast<std::int64_t>(counts.size()); ++p) counts[p] = 0;
-    const std::vector<CellRun> slabs = split_into_slabs(index, threads);
-    const auto slab_count = static_cast<std::int64_t>(slabs.size());
-    for (std::int64_t parity = 0; parity < 2; ++parity) {
+    for (const std::vector<CellBlock>& colour : count_pass_blocks(index, threads)) {
+      const auto block_count = static_cast<std::int64_t>(colour.size());
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
-      for (std::int64_t s = parity; s < slab_count; s += 2)
-        count_each_pair_once(pass, slabs[static_cast<std::size_t>(s)], counts.data());
+      for (std::int64_t b = 0; b < block_count; ++b)
+        for (const CellRun run : colour[static_cast<std::size_t>(b)]) count_each_pair_once(pass, run, counts.data());
     }
     const point_id* order = index.order().data();
     const auto cells = static_cast<std::int64_t>(index.occupied_cells());

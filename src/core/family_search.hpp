@@ -4,10 +4,12 @@
 // means no buffer grows, nothing is copied, nothing is capped, and the list's pages are touched
 // once (a one-pass variant that stored rows and copied them spent more in page faults than the
 // count pass costs).
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
 #include <span>
+#include <vector>
 
 #include "horizon/cell_index.hpp"
 #include "horizon/neighbor_list.hpp"
@@ -19,6 +21,18 @@ namespace horizon::detail {
 struct CellRun {
   std::size_t first = 0, last = 0;
 };
+
+/// The cells of one slab of layers whose lines lie in one band: a run per layer.
+using CellBlock = std::vector<CellRun>;
+
+/// The work of count_each_pair_once() on `threads` threads, in four colours counted one after
+/// another: the blocks of a colour write disjoint counts, so they run at once. Slabs of whole
+/// layers (at least k each), and when a layer holds more than its share of points (lattice 100,
+/// m = 1.5: 67 layers, 34 slabs a parity for 16 threads, of which two threads took a third),
+/// bands of lines across them too (3-D, dense grid). An upper stencil reaches k layers up and
+/// k lines either side, so bands of at least 2k lines keep the bands two apart disjoint, as
+/// slabs of at least k layers do the slabs two apart.
+std::array<std::vector<CellBlock>, 4> count_pass_blocks(const CellIndex& index, int threads);
 
 /// What both passes read, and the list they write.
 struct FamilyPass {
