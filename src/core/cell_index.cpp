@@ -26,6 +26,9 @@ struct IndexPoints {
   const T* xyz;
   std::size_t rows;
   PointView images;
+  void prefetch(std::size_t i) const {
+    if (i < rows) __builtin_prefetch(xyz + i * D);
+  }
   double operator()(std::size_t i, int a) const {
     return i < rows ? static_cast<double>(xyz[i * D + static_cast<std::size_t>(a)]) : images(i - rows, a);
   }
@@ -75,6 +78,9 @@ void CellIndex::build(const Coordinate& coordinate, int threads, Images images) 
   }
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
   for (std::int64_t p = 0; p < n; ++p) {
+    // Input in random order: each point's coordinates are a cache miss; fetch them ahead
+    // (random cloud of 10^6, one core of the 2-core Zen 5 VM: cell index 25-26 -> 22-23 ms).
+    if (p + 16 < n) coordinate.prefetch(static_cast<std::size_t>(order_[p + 16]));
     const point_id i = order_[p];
     for (int a = 0; a < 3; ++a)
       sorted_[a][static_cast<std::size_t>(p)] = a < grid_.dims ? coordinate(static_cast<std::size_t>(i), a) : 0.0;
