@@ -140,6 +140,11 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
   const int k = index.grid().cells_per_horizon, width = 2 * k + 1, kz = D == 3 ? k : 0;
   std::vector<CellIndex::Range> cells(Radii ? static_cast<std::size_t>(index.max_stencil_cells()) : 0);
   constexpr std::int64_t short_row = ShortRowCapacity<point_id>();
+  // Whether the row of point `self` (its counted size, plus `self` when the pass finds it) is
+  // longer than the sorting network holds.
+  auto beyond_network = [&](point_id self, std::int64_t with_self) {
+    return offsets[self + 1] - offsets[self] + with_self > short_row;
+  };
   constexpr std::int64_t lookahead = 16;
 
   // A batch of rows (FamilyPass::rows_begin..rows_end) fills only the cells holding one of its points.
@@ -178,7 +183,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       const auto [first, last] = index.rows_of(c);
       for (std::int64_t p = first; p < last && !sorted_stencil; ++p) {
         const point_id self = order[p];
-        sorted_stencil = static_cast<std::size_t>(self) < queries && offsets[self + 1] - offsets[self] + self_found > short_row;
+        sorted_stencil = static_cast<std::size_t>(self) < queries && beyond_network(self, self_found);
       }
     }
     bool gathered = false;
@@ -217,7 +222,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       std::int64_t found = 0;
       bool sorted_row = sorted_stencil;  // found in id order from the sorted stencil
       if (Fill && Radii && options.sort_rows && !pass.candidate_threshold &&
-          offsets[self + 1] - offsets[self] + row_self_found > short_row) {
+          beyond_network(self, row_self_found)) {
         gather();
         sorted_row = true;
       }
