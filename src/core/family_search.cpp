@@ -68,9 +68,10 @@ std::array<std::vector<CellBlock>, 4> count_pass_blocks(const CellIndex& index, 
   for (std::size_t s = 0; s < slabs.size(); ++s) {
     std::vector<CellBlock> blocks(static_cast<std::size_t>(bands));
     for (std::size_t c = slabs[s].first; c < slabs[s].last;) {
+      const std::int64_t band = band_of(c);
       std::size_t end = c + 1;
-      while (end < slabs[s].last && index.layer(end) == index.layer(c) && band_of(end) == band_of(c)) ++end;
-      blocks[static_cast<std::size_t>(band_of(c))].push_back(CellRun{c, end});
+      while (end < slabs[s].last && index.layer(end) == index.layer(c) && band_of(end) == band) ++end;
+      blocks[static_cast<std::size_t>(band)].push_back(CellRun{c, end});
       c = end;
     }
     for (std::size_t b = 0; b < blocks.size(); ++b)
