@@ -5,11 +5,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "core/radix_sort.hpp"
 #include "core/sorted_stencil.hpp"
 #include "datasets.hpp"
 #include "horizon/cell_index.hpp"
+#include "horizon/generate.hpp"
 
 namespace horizon {
 namespace {
@@ -39,6 +41,19 @@ TEST(CellIndex, AnyThreadCountGivesTheSerialSortStableById) {
         }
         for (const int threads : {2, 3, 7}) expect_same_index(serial, CellIndex(data.points.view(), grid, threads));
       }
+}
+
+TEST(CellIndex, LargeClusteredAndFlatInputsGiveTheSerialSort) {
+  // Dense grids of 9x10^4 and 2.5x10^5 cells (radix sorts of two passes), cells holding
+  // thousands of points, more threads than cores.
+  const PointSet clustered = clustered_cloud(200000, 3, 0.05);
+  const PointSet flat = random_cloud(100000, 2);
+  for (const auto& [points, horizon] : {std::pair{&clustered, 0.1}, std::pair{&flat, 0.02}}) {
+    const Grid grid = Grid::fit(points->view(), horizon, 1);
+    ASSERT_TRUE(grid.dense);
+    const CellIndex serial(points->view(), grid, 1);
+    for (const int threads : {2, 5, 16}) expect_same_index(serial, CellIndex(points->view(), grid, threads));
+  }
 }
 
 TEST(CellIndex, ImagesHoldNoRowAndCarryTheirOriginalsIds) {
