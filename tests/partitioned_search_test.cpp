@@ -61,12 +61,40 @@ TEST(PartitionedSearch, UnsortedRowsHoldTheSameFamilies) {
   expect_same_families(unsorted, search(points.view(), options));
 }
 
+bool gpu_or_skip() {
+  if (backend_available(Backend::cuda)) return true;
+  const char* required = std::getenv("HORIZON_REQUIRE_GPU");
+  if (required && std::string(required) == "1") ADD_FAILURE() << "HORIZON_REQUIRE_GPU=1 but no usable GPU";
+  return false;
+}
+
+// GPU parts keep their lists on the GPU and copy each row to its place; with too little GPU
+// memory for a part's list (gpu_max_memory) every part takes the host path instead.
+TEST(PartitionedSearch, GpuPartsGiveTheSerialList) {
+  if (!gpu_or_skip()) GTEST_SKIP() << "no usable GPU";
+  for (int dims : {2, 3})
+    for (const Dataset& data : datasets(dims))
+      for (bool half : {false, true})
+        for (int parts : {2, 3})
+          for (std::size_t gpu_memory : {std::size_t{0}, std::size_t{1} << 20}) {
+            SearchOptions options = options_for(data, Metric::euclidean, 1, half);
+            options.backend = Backend::cuda;
+            options.gpu_max_memory = gpu_memory;
+            SearchStats stats;
+            const NeighborList list =
+                detail::search_parts(data.points.view(), options, std::vector<SearchOptions>(parts, options), stats);
+            SearchOptions serial = options;
+            serial.backend = Backend::serial;
+            ASSERT_EQ(list, search(data.points.view(), serial)) << data.name << " dims " << dims << " half " << half
+                                                                  << " parts " << parts << " gpu memory " << gpu_memory;
+            std::int64_t entries = 0;
+            for (const PartStats& part : stats.parts) entries += part.entries;
+            EXPECT_EQ(entries, list.total());
+          }
+}
+
 TEST(PartitionedSearch, SeveralDevicesThroughSearchOptions) {
-  if (!backend_available(Backend::cuda)) {
-    const char* required = std::getenv("HORIZON_REQUIRE_GPU");
-    if (required && std::string(required) == "1") FAIL() << "HORIZON_REQUIRE_GPU=1 but no usable GPU";
-    GTEST_SKIP() << "no usable GPU";
-  }
+  if (!gpu_or_skip()) GTEST_SKIP() << "no usable GPU";
   const PointSet points = clustered_cloud(300000, 20, 0.6, 3, 9);
   SearchOptions options;
   options.horizon = 0.12;
@@ -79,6 +107,8 @@ TEST(PartitionedSearch, SeveralDevicesThroughSearchOptions) {
   serial.devices.clear();
   EXPECT_EQ(list, search(points.view(), serial));
   EXPECT_EQ(stats.parts.size(), 3u);
+  options.sort_rows = false;
+  expect_same_families(search(points.view(), options), list);
 }
 
 }  // namespace

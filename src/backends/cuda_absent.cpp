@@ -1,6 +1,7 @@
 // Linked instead of the CUDA backend when horizon is built without CUDA: every entry point
 // exists and says why it cannot run.
 #include "backends.hpp"
+#include "../core/device_part.hpp"
 #include "horizon/cuda.hpp"
 #include "horizon/device_verlet_list.hpp"
 #include "horizon/error.hpp"
@@ -16,6 +17,10 @@ namespace {
 namespace detail {
 bool cuda_usable() { return false; }
 NeighborList search_cuda(PointView, const SearchOptions&, SearchStats&) { no_cuda(); }
+std::unique_ptr<DevicePart> search_on_device(PointView, const std::vector<point_id>&, const SearchOptions&) {
+  no_cuda();
+}
+void copy_part_rows(const std::vector<PartRows>&, const std::int64_t*, point_id*) { no_cuda(); }
 }  // namespace detail
 
 void DeviceNeighborList::Free::operator()(void*) const {}

@@ -7,9 +7,12 @@
 #include <exception>
 #include <thread>
 
+#include "device_part.hpp"
+#include "horizon/cuda.hpp"
 #include "horizon/decomposition.hpp"
 #include "horizon/grid.hpp"
 #include "memory_check.hpp"
+#include "parallel_copy.hpp"
 #include "parallel_scan.hpp"
 
 namespace horizon::detail {
@@ -21,6 +24,10 @@ struct Part {
   std::vector<point_id> owned, halo, global;
   NeighborList list;
   PartStats stats;
+  // A part whose list stays on its GPU: its local points ascend by global id, keep[r] marks
+  // the owned ones.
+  std::unique_ptr<DevicePart> on_device;
+  std::vector<std::uint8_t> keep;
 };
 
 /// How many entries row i of a local list keeps (half lists: j > i by global id).
@@ -76,19 +83,46 @@ void assign(PointView points, const Decomposition& d, double reach, std::vector<
     }
 }
 
+/// The coordinates of points global[0], global[1], ...
+PointSet gather(PointView points, const std::vector<point_id>& global) {
+  const int dims = points.dims();
+  PointSet local{dims, std::vector<double>(global.size() * static_cast<std::size_t>(dims))};
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < static_cast<std::int64_t>(global.size()); ++i)
+    for (int a = 0; a < dims; ++a)
+      local.xyz[static_cast<std::size_t>(i) * dims + a] = points(static_cast<std::size_t>(global[i]), a);
+  return local;
+}
+
+/// Searches a part on its GPU, its list left there: owned points and halo in one ascending
+/// order, every one a row (the halo's, incomplete, are not copied).
+void search_part_on_device(PointView points, Part& part, const SearchOptions& part_options) {
+  const auto start = std::chrono::steady_clock::now();
+  part.global.resize(part.owned.size() + part.halo.size());
+  std::merge(part.owned.begin(), part.owned.end(), part.halo.begin(), part.halo.end(), part.global.begin());
+  part.keep.resize(part.global.size());
+  std::size_t o = 0;
+  for (std::size_t r = 0; r < part.global.size(); ++r) {
+    part.keep[r] = o < part.owned.size() && part.owned[o] == part.global[r];
+    o += part.keep[r];
+  }
+  SearchOptions options = part_options;
+  options.devices.clear();
+  part.on_device = search_on_device(gather(points, part.global).view(), part.global, options);
+  part.stats.device = part_options.device;
+  part.stats.owned = part.owned.size();
+  part.stats.halo = part.halo.size();
+  part.stats.build_seconds = part.stats.seconds = seconds_since(start);
+}
+
 /// Searches a part: owned points first, then its halo, as references only.
 void search_part(PointView points, Part& part, const SearchOptions& part_options) {
   const auto start = std::chrono::steady_clock::now();
-  const int dims = points.dims();
-  const std::size_t owned = part.owned.size(), local_count = owned + part.halo.size();
+  const std::size_t owned = part.owned.size();
   std::vector<point_id>& global = part.global;
   global = part.owned;
   global.insert(global.end(), part.halo.begin(), part.halo.end());
-  PointSet local{dims, std::vector<double>(local_count * static_cast<std::size_t>(dims))};
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < static_cast<std::int64_t>(local_count); ++i)
-    for (int a = 0; a < dims; ++a)
-      local.xyz[static_cast<std::size_t>(i) * dims + a] = points(static_cast<std::size_t>(global[i]), a);
+  const PointSet local = gather(points, global);
 
   part.list = NeighborList({0}, {}, false);
   if (owned > 0) {
@@ -141,50 +175,88 @@ NeighborList search_parts(PointView points, const SearchOptions& options,
   assign(points, d, halo_reach(box, points.dims(), options.horizon), parts);
   stats.partition_seconds = seconds_since(clock);
 
+  // Each part on its own thread; the first failure is rethrown once all have ended.
+  auto on_each_part = [&](auto&& work) {
+    std::vector<std::exception_ptr> failures(static_cast<std::size_t>(count));
+    std::vector<std::thread> threads;
+    for (int p = 0; p < count; ++p)
+      threads.emplace_back([&, p] {
+        try {
+          work(parts[p], part_options[p]);
+        } catch (...) {
+          failures[p] = std::current_exception();
+        }
+      });
+    for (auto& t : threads) t.join();
+    for (const auto& failure : failures)
+      if (failure) std::rethrow_exception(failure);
+  };
+  // GPU parts keep their lists on their GPUs until each row is copied to its place; a list
+  // that does not fit there takes the host path (in batches) and the assembly below.
   clock = std::chrono::steady_clock::now();
-  std::vector<std::exception_ptr> failures(static_cast<std::size_t>(count));
-  std::vector<std::thread> threads;
-  for (int p = 0; p < count; ++p)
-    threads.emplace_back([&, p] {
-      try {
-        search_part(points, parts[p], part_options[p]);
-      } catch (...) {
-        failures[p] = std::current_exception();
-      }
-    });
-  for (auto& t : threads) t.join();
-  for (const auto& failure : failures)
-    if (failure) std::rethrow_exception(failure);
+  bool on_devices = options.queries == 0 &&
+                    std::all_of(part_options.begin(), part_options.end(),
+                                [](const SearchOptions& o) { return o.backend == Backend::cuda; });
+  if (on_devices) {
+    try {
+      on_each_part([&](Part& part, const SearchOptions& o) { search_part_on_device(points, part, o); });
+    } catch (const DeviceOutOfMemory&) {
+      on_devices = false;
+      for (Part& part : parts) part.on_device.reset();
+    }
+  }
+  if (!on_devices) on_each_part([&](Part& part, const SearchOptions& o) { search_part(points, part, o); });
   const double parts_seconds = seconds_since(clock);
 
-  // Rows in input order, each written once, in global ids, straight from its part's local list.
+  // Rows in input order, each written once, in global ids, straight from its part's list.
   clock = std::chrono::steady_clock::now();
   const std::size_t n = points.size();
   Buffer<std::int64_t> offsets(n + 1);
   offsets[0] = 0;
-  for (const Part& part : parts) {
-    const auto rows = static_cast<std::int64_t>(part.owned.size());
-#pragma omp parallel for schedule(static)
-    for (std::int64_t r = 0; r < rows; ++r)
-      offsets[static_cast<std::size_t>(part.owned[r]) + 1] = kept(part.list, static_cast<std::size_t>(r), part.global, options.half);
+  for (Part& part : parts) {
+    std::int64_t entries = 0;
+    if (on_devices) {
+      const Buffer<std::int64_t>& local = part.on_device->offsets();
+      const auto rows = static_cast<std::int64_t>(part.global.size());
+#pragma omp parallel for schedule(static) reduction(+ : entries)
+      for (std::int64_t r = 0; r < rows; ++r)
+        if (part.keep[static_cast<std::size_t>(r)]) {
+          offsets[static_cast<std::size_t>(part.global[r]) + 1] = local[r + 1] - local[r];
+          entries += local[r + 1] - local[r];
+        }
+    } else {
+      const auto rows = static_cast<std::int64_t>(part.owned.size());
+#pragma omp parallel for schedule(static) reduction(+ : entries)
+      for (std::int64_t r = 0; r < rows; ++r) {
+        const std::int64_t size = kept(part.list, static_cast<std::size_t>(r), part.global, options.half);
+        offsets[static_cast<std::size_t>(part.owned[r]) + 1] = size;
+        entries += size;
+      }
+    }
+    part.stats.entries = entries;
   }
   inclusive_scan(offsets.data() + 1, n, omp_get_max_threads());
   check_list_fits(offsets[n], options);
   Buffer<point_id> indices(static_cast<std::size_t>(offsets[n]));
-  for (Part& part : parts) {
-    const auto rows = static_cast<std::int64_t>(part.owned.size());
-    std::int64_t entries = 0;
-#pragma omp parallel for schedule(dynamic, 1024) reduction(+ : entries)
-    for (std::int64_t r = 0; r < rows; ++r) {
-      const std::size_t g = static_cast<std::size_t>(part.owned[r]);
-      write_row(part.list, static_cast<std::size_t>(r), part.global, part.owned.size(), options.half, options.sort_rows,
-                indices.data() + offsets[g]);
-      entries += offsets[g + 1] - offsets[g];
+  if (on_devices) {
+    // Faulted in first, on all cores: the rows then arrive at copy speed.
+    parallel_touch(indices.data(), indices.size() * sizeof(point_id));
+    std::vector<PartRows> rows;
+    for (const Part& part : parts) rows.push_back({part.on_device.get(), &part.keep, &part.global});
+    copy_part_rows(rows, offsets.data(), indices.data());
+  } else {
+    for (Part& part : parts) {
+      const auto rows = static_cast<std::int64_t>(part.owned.size());
+#pragma omp parallel for schedule(dynamic, 1024)
+      for (std::int64_t r = 0; r < rows; ++r) {
+        const std::size_t g = static_cast<std::size_t>(part.owned[r]);
+        write_row(part.list, static_cast<std::size_t>(r), part.global, part.owned.size(), options.half,
+                  options.sort_rows, indices.data() + offsets[g]);
+      }
+      part.list = NeighborList();  // freed as soon as its rows are placed
     }
-    part.stats.entries = entries;
-    stats.parts.push_back(part.stats);
-    part = Part{};  // frees the part's list as soon as its rows are placed
   }
+  for (Part& part : parts) stats.parts.push_back(part.stats);
   stats.assemble_seconds = seconds_since(clock);
   stats.search_seconds = stats.partition_seconds + parts_seconds + stats.assemble_seconds;
   stats.threads = count;

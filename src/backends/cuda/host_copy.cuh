@@ -70,6 +70,7 @@ public:
     pool().push_back(std::move(staging_));
   }
   Staging* operator->() { return staging_.get(); }
+  Staging& operator*() { return *staging_; }
 
 private:
   static std::mutex& mutex() {

@@ -565,3 +565,6 @@ std::string cuda_device_name(int device) {
 }
 
 }  // namespace horizon
+
+// After the host path it shares streams, upload and staging with.
+#include "device_part.cuh"
