@@ -17,7 +17,7 @@ namespace {
 namespace detail {
 bool cuda_usable() { return false; }
 NeighborList search_cuda(PointView, const SearchOptions&, SearchStats&) { no_cuda(); }
-std::unique_ptr<DevicePart> search_on_device(PointView, const std::vector<point_id>&, const SearchOptions&) {
+std::unique_ptr<DevicePart> search_on_device(PointView, std::span<const point_id>, const SearchOptions&) {
   no_cuda();
 }
 void copy_part_rows(const std::vector<PartRows>&, const std::int64_t*, point_id*) { no_cuda(); }

@@ -5,6 +5,7 @@
 // (cuda/device_part.cuh); without CUDA, search_on_device throws.
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "horizon/neighbor_list.hpp"
@@ -23,8 +24,8 @@ public:
 /// A part's rows to copy: local row r, when keep[r], goes to indices + at[global[r]].
 struct PartRows {
   const DevicePart* part;
-  const std::vector<std::uint8_t>* keep;
-  const std::vector<point_id>* global;
+  std::span<const std::uint8_t> keep;
+  std::span<const point_id> global;
 };
 
 /// Copies the rows of every part to their places, every part's copy under way at once and all
@@ -34,7 +35,7 @@ void copy_part_rows(const std::vector<PartRows>& parts, const std::int64_t* at, 
 /// The list of `local` (points ascending by global id; `global`: each one's) on
 /// options.device, its ids mapped to global ids there. Rows stay sorted and a half list keeps
 /// j > i by global id, since the map ascends. Throws DeviceOutOfMemory when it does not fit.
-std::unique_ptr<DevicePart> search_on_device(PointView local, const std::vector<point_id>& global,
+std::unique_ptr<DevicePart> search_on_device(PointView local, std::span<const point_id> global,
                                              const SearchOptions& options);
 
 }  // namespace horizon::detail

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <exception>
+#include <span>
 #include <thread>
 
 #include "device_part.hpp"
@@ -21,17 +22,17 @@ namespace {
 /// One part: the ids of the points it owns and of its halo (ascending), then its local list
 /// (owned points first, then the halo) and `global`, the global id of each local point.
 struct Part {
-  std::vector<point_id> owned, halo, global;
+  ScratchBuffer<point_id> owned, halo, global;
   NeighborList list;
   PartStats stats;
   // A part whose list stays on its GPU: its local points ascend by global id, keep[r] marks
   // the owned ones.
   std::unique_ptr<DevicePart> on_device;
-  std::vector<std::uint8_t> keep;
+  ScratchBuffer<std::uint8_t> keep;
 };
 
 /// How many entries row i of a local list keeps (half lists: j > i by global id).
-std::int64_t kept(const NeighborList& list, std::size_t i, const std::vector<point_id>& global, bool half) {
+std::int64_t kept(const NeighborList& list, std::size_t i, std::span<const point_id> global, bool half) {
   const auto row = list.row(i);
   if (!half) return static_cast<std::int64_t>(row.size());
   return std::count_if(row.begin(), row.end(), [&](point_id j) { return global[j] > global[i]; });
@@ -39,7 +40,7 @@ std::int64_t kept(const NeighborList& list, std::size_t i, const std::vector<poi
 
 /// Writes row i of a local list at `out` in global ids: two runs ascending in global id (the
 /// owned points', then the references'), which one merge sorts.
-void write_row(const NeighborList& list, std::size_t i, const std::vector<point_id>& global, std::size_t owned,
+void write_row(const NeighborList& list, std::size_t i, std::span<const point_id> global, std::size_t owned,
                bool half, bool sort_rows, point_id* out) {
   point_id* references_from = nullptr;
   point_id* at = out;
@@ -56,62 +57,75 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// Owner and halo membership of every point. Each thread takes a contiguous range of ids, so
-/// concatenating the threads' pieces in order keeps every list ascending.
-void assign(PointView points, const Decomposition& d, double reach, std::vector<Part>& parts) {
-  const int count = static_cast<int>(parts.size()), dims = points.dims();
-  const auto n = static_cast<std::int64_t>(points.size());
+/// The ascending ids i < n with keep(i), found on all cores (each thread counts, then writes,
+/// a contiguous range of ids).
+template <class Keep>
+ScratchBuffer<point_id> ids_where(std::size_t n, Keep keep) {
   const int pieces = omp_get_max_threads();
-  std::vector<std::vector<std::vector<point_id>>> owned(pieces), halo(pieces);
+  std::vector<std::size_t> start(static_cast<std::size_t>(pieces) + 1, 0);
+  auto range = [&](int t) { return std::pair{n * t / pieces, n * (t + 1) / pieces}; };
 #pragma omp parallel for schedule(static)
   for (int t = 0; t < pieces; ++t) {
-    owned[t].resize(count);
-    halo[t].resize(count);
-    double x[3] = {0, 0, 0};
-    for (std::int64_t i = n * t / pieces; i < n * (t + 1) / pieces; ++i) {
-      for (int a = 0; a < dims; ++a) x[a] = points(static_cast<std::size_t>(i), a);
-      const int owner = d.owner(x);
-      owned[t][owner].push_back(static_cast<point_id>(i));
-      for (int p = 0; p < count; ++p)
-        if (p != owner && d.box(p).near(x, dims, reach)) halo[t][p].push_back(static_cast<point_id>(i));
-    }
+    const auto [begin, end] = range(t);
+    std::size_t count = 0;
+    for (std::size_t i = begin; i < end; ++i) count += keep(i);
+    start[t + 1] = count;
   }
-  for (int p = 0; p < count; ++p)
-    for (int t = 0; t < pieces; ++t) {
-      parts[p].owned.insert(parts[p].owned.end(), owned[t][p].begin(), owned[t][p].end());
-      parts[p].halo.insert(parts[p].halo.end(), halo[t][p].begin(), halo[t][p].end());
-    }
+  for (int t = 0; t < pieces; ++t) start[t + 1] += start[t];
+  ScratchBuffer<point_id> ids(start[pieces]);
+#pragma omp parallel for schedule(static)
+  for (int t = 0; t < pieces; ++t) {
+    const auto [begin, end] = range(t);
+    point_id* out = ids.data() + start[t];
+    for (std::size_t i = begin; i < end; ++i)
+      if (keep(i)) *out++ = static_cast<point_id>(i);
+  }
+  return ids;
 }
 
-/// The coordinates of points global[0], global[1], ...
-PointSet gather(PointView points, const std::vector<point_id>& global) {
+/// Every point's part and the parts whose halo it lies in (bit p of halo).
+struct Membership {
+  ScratchBuffer<std::uint8_t> owner;
+  ScratchBuffer<std::uint64_t> halo;
+};
+
+Membership membership(PointView points, const Decomposition& d, int parts, double reach) {
+  const auto n = static_cast<std::int64_t>(points.size());
   const int dims = points.dims();
-  PointSet local{dims, std::vector<double>(global.size() * static_cast<std::size_t>(dims))};
+  Membership m{ScratchBuffer<std::uint8_t>(points.size()), ScratchBuffer<std::uint64_t>(points.size())};
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    double x[3] = {0, 0, 0};
+    for (int a = 0; a < dims; ++a) x[a] = points(static_cast<std::size_t>(i), a);
+    const int owner = d.owner(x);
+    std::uint64_t halo = 0;
+    for (int p = 0; p < parts; ++p)
+      if (p != owner && d.box(p).near(x, dims, reach)) halo |= std::uint64_t{1} << p;
+    m.owner[i] = static_cast<std::uint8_t>(owner);
+    m.halo[i] = halo;
+  }
+  return m;
+}
+
+/// The coordinates of points global[0], global[1], ... (in `xyz`), as a view.
+PointView gather(PointView points, std::span<const point_id> global, ScratchBuffer<double>& xyz) {
+  const int dims = points.dims();
+  xyz.resize(global.size() * static_cast<std::size_t>(dims));
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < static_cast<std::int64_t>(global.size()); ++i)
-    for (int a = 0; a < dims; ++a)
-      local.xyz[static_cast<std::size_t>(i) * dims + a] = points(static_cast<std::size_t>(global[i]), a);
-  return local;
+    for (int a = 0; a < dims; ++a) xyz[static_cast<std::size_t>(i) * dims + a] = points(static_cast<std::size_t>(global[i]), a);
+  return PointView(xyz.data(), global.size(), dims);
 }
 
-/// Searches a part on its GPU, its list left there: owned points and halo in one ascending
-/// order, every one a row (the halo's, incomplete, are not copied).
+/// Searches a part on its GPU, its list left there: its points and its halo in one ascending
+/// order (part.global), every one a row (the halo's, incomplete, are not copied).
 void search_part_on_device(PointView points, Part& part, const SearchOptions& part_options) {
   const auto start = std::chrono::steady_clock::now();
-  part.global.resize(part.owned.size() + part.halo.size());
-  std::merge(part.owned.begin(), part.owned.end(), part.halo.begin(), part.halo.end(), part.global.begin());
-  part.keep.resize(part.global.size());
-  std::size_t o = 0;
-  for (std::size_t r = 0; r < part.global.size(); ++r) {
-    part.keep[r] = o < part.owned.size() && part.owned[o] == part.global[r];
-    o += part.keep[r];
-  }
   SearchOptions options = part_options;
   options.devices.clear();
-  part.on_device = search_on_device(gather(points, part.global).view(), part.global, options);
+  ScratchBuffer<double> xyz;
+  part.on_device = search_on_device(gather(points, part.global, xyz), part.global, options);
   part.stats.device = part_options.device;
-  part.stats.owned = part.owned.size();
-  part.stats.halo = part.halo.size();
   part.stats.build_seconds = part.stats.seconds = seconds_since(start);
 }
 
@@ -119,10 +133,12 @@ void search_part_on_device(PointView points, Part& part, const SearchOptions& pa
 void search_part(PointView points, Part& part, const SearchOptions& part_options) {
   const auto start = std::chrono::steady_clock::now();
   const std::size_t owned = part.owned.size();
-  std::vector<point_id>& global = part.global;
-  global = part.owned;
-  global.insert(global.end(), part.halo.begin(), part.halo.end());
-  const PointSet local = gather(points, global);
+  ScratchBuffer<point_id>& global = part.global;
+  global.resize(owned + part.halo.size());
+  std::copy(part.owned.begin(), part.owned.end(), global.begin());
+  std::copy(part.halo.begin(), part.halo.end(), global.begin() + static_cast<std::ptrdiff_t>(owned));
+  ScratchBuffer<double> xyz;
+  const PointView local = gather(points, global, xyz);
 
   part.list = NeighborList({0}, {}, false);
   if (owned > 0) {
@@ -131,13 +147,11 @@ void search_part(PointView points, Part& part, const SearchOptions& part_options
     o.queries = owned;
     o.devices.clear();
     SearchStats stats;
-    part.list = search(local.view(), o, &stats);
+    part.list = search(local, o, &stats);
     part.stats.build_seconds =
         stats.backend == Backend::cuda ? stats.kernel_seconds : stats.grid_seconds + stats.search_seconds;
   }
   part.stats.device = part_options.device;
-  part.stats.owned = owned;
-  part.stats.halo = part.halo.size();
   part.stats.seconds = seconds_since(start);
 }
 
@@ -172,7 +186,32 @@ NeighborList search_parts(PointView points, const SearchOptions& options,
   const Bounds box = bounds_of(points, omp_get_max_threads());
   const Decomposition d = Decomposition::rcb(box, sample.view(), count);
   std::vector<Part> parts(static_cast<std::size_t>(count));
-  assign(points, d, halo_reach(box, points.dims(), options.horizon), parts);
+  const Membership m = membership(points, d, count, halo_reach(box, points.dims(), options.horizon));
+  // GPU parts keep their lists on their GPUs until each row is copied to its place; a list
+  // that does not fit there takes the host path (in batches) and the assembly below.
+  bool on_devices = options.queries == 0 &&
+                    std::all_of(part_options.begin(), part_options.end(),
+                                [](const SearchOptions& o) { return o.backend == Backend::cuda; });
+  auto part_points = [&](bool on_device) {
+    for (int p = 0; p < count; ++p) {
+      Part& part = parts[static_cast<std::size_t>(p)];
+      const std::uint64_t bit = std::uint64_t{1} << p;
+      if (on_device) {  // its points and halo in one ascending order, its own marked
+        part.global = ids_where(points.size(), [&](std::size_t i) { return m.owner[i] == p || (m.halo[i] & bit); });
+        part.keep.resize(part.global.size());
+#pragma omp parallel for schedule(static)
+        for (std::int64_t r = 0; r < static_cast<std::int64_t>(part.global.size()); ++r)
+          part.keep[r] = m.owner[part.global[r]] == p;
+      } else {
+        part.owned = ids_where(points.size(), [&](std::size_t i) { return m.owner[i] == p; });
+        part.halo = ids_where(points.size(), [&](std::size_t i) { return (m.halo[i] & bit) != 0; });
+      }
+      part.stats.owned = on_device ? static_cast<std::size_t>(std::count(part.keep.begin(), part.keep.end(), 1))
+                                   : part.owned.size();
+      part.stats.halo = on_device ? part.global.size() - part.stats.owned : part.halo.size();
+    }
+  };
+  part_points(on_devices);
   stats.partition_seconds = seconds_since(clock);
 
   // Each part on its own thread; the first failure is rethrown once all have ended.
@@ -191,18 +230,14 @@ NeighborList search_parts(PointView points, const SearchOptions& options,
     for (const auto& failure : failures)
       if (failure) std::rethrow_exception(failure);
   };
-  // GPU parts keep their lists on their GPUs until each row is copied to its place; a list
-  // that does not fit there takes the host path (in batches) and the assembly below.
   clock = std::chrono::steady_clock::now();
-  bool on_devices = options.queries == 0 &&
-                    std::all_of(part_options.begin(), part_options.end(),
-                                [](const SearchOptions& o) { return o.backend == Backend::cuda; });
   if (on_devices) {
     try {
       on_each_part([&](Part& part, const SearchOptions& o) { search_part_on_device(points, part, o); });
     } catch (const DeviceOutOfMemory&) {
       on_devices = false;
       for (Part& part : parts) part.on_device.reset();
+      part_points(false);
     }
   }
   if (!on_devices) on_each_part([&](Part& part, const SearchOptions& o) { search_part(points, part, o); });
@@ -242,7 +277,7 @@ NeighborList search_parts(PointView points, const SearchOptions& options,
     // Faulted in first, on all cores: the rows then arrive at copy speed.
     parallel_touch(indices.data(), indices.size() * sizeof(point_id));
     std::vector<PartRows> rows;
-    for (const Part& part : parts) rows.push_back({part.on_device.get(), &part.keep, &part.global});
+    for (const Part& part : parts) rows.push_back({part.on_device.get(), part.keep, part.global});
     copy_part_rows(rows, offsets.data(), indices.data());
   } else {
     for (Part& part : parts) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstring>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "../../core/device_part.hpp"
@@ -31,7 +32,7 @@ struct Chunk {
 
 class DevicePartOnGpu final : public DevicePart {
 public:
-  DevicePartOnGpu(PointView local, const std::vector<point_id>& global, const SearchOptions& options)
+  DevicePartOnGpu(PointView local, std::span<const point_id> global, const SearchOptions& options)
       : device_(options.device), lease_(options.device) {
     const cudaStream_t stream = lease_.get();
     MemoryMeter meter(device_, stream, options.gpu_max_memory);
@@ -103,7 +104,7 @@ private:
 
 }  // namespace
 
-std::unique_ptr<DevicePart> search_on_device(PointView local, const std::vector<point_id>& global,
+std::unique_ptr<DevicePart> search_on_device(PointView local, std::span<const point_id> global,
                                              const SearchOptions& options) {
   select_device(options.device);
   return std::make_unique<DevicePartOnGpu>(local, global, options);
@@ -130,8 +131,8 @@ void copy_part_rows(const std::vector<PartRows>& parts, const std::int64_t* at, 
     for (std::size_t p = 0; p < parts.size(); ++p) {
       const auto& part = *static_cast<const DevicePartOnGpu*>(parts[p].part);
       if (c >= part.chunks().size()) continue;
-      const std::vector<std::uint8_t>& keep = *parts[p].keep;
-      const std::vector<point_id>& global = *parts[p].global;
+      const std::span<const std::uint8_t> keep = parts[p].keep;
+      const std::span<const point_id> global = parts[p].global;
       const Chunk chunk = part.chunks()[c];
       const point_id* staged = part.arrived(c, **staging[p], keep[chunk.first] ? indices + at[global[chunk.first]] : nullptr);
       if (!staged) continue;
