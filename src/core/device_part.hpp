@@ -28,6 +28,11 @@ struct PartRows {
   std::span<const point_id> global;
 };
 
+/// Places rows [first, last) of a part that arrived at `staged` (row r at offsets[r] -
+/// offsets[first]), on all cores: compiled as C++ with OpenMP, which CUDA sources are not.
+void place_rows(const PartRows& part, const std::int64_t* offsets, std::size_t first, std::size_t last,
+                const point_id* staged, const std::int64_t* at, point_id* indices);
+
 /// Copies the rows of every part to their places, every part's copy under way at once and all
 /// cores placing the rows that have arrived.
 void copy_part_rows(const std::vector<PartRows>& parts, const std::int64_t* at, point_id* indices);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <exception>
 #include <span>
 #include <thread>
@@ -156,6 +157,15 @@ void search_part(PointView points, Part& part, const SearchOptions& part_options
 }
 
 }  // namespace
+
+void place_rows(const PartRows& part, const std::int64_t* offsets, std::size_t first, std::size_t last,
+                const point_id* staged, const std::int64_t* at, point_id* indices) {
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::int64_t r = static_cast<std::int64_t>(first); r < static_cast<std::int64_t>(last); ++r)
+    if (part.keep[static_cast<std::size_t>(r)])
+      std::memcpy(indices + at[part.global[static_cast<std::size_t>(r)]], staged + (offsets[r] - offsets[first]),
+                  static_cast<std::size_t>(offsets[r + 1] - offsets[r]) * sizeof(point_id));
+}
 
 NeighborList rows_in_global_ids(const NeighborList& list, const std::vector<point_id>& global, std::size_t owned,
                                 bool half, bool sort_rows, std::size_t references_from) {

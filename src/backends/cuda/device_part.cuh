@@ -4,7 +4,6 @@
 #include <cuda_runtime.h>
 
 #include <algorithm>
-#include <cstring>
 #include <memory>
 #include <span>
 #include <vector>
@@ -114,35 +113,23 @@ std::unique_ptr<DevicePart> search_on_device(PointView local, std::span<const po
 // part under way while all cores place the rows of the chunks that have arrived: no thread per
 // part, whose OpenMP teams would share the cores.
 void copy_part_rows(const std::vector<PartRows>& parts, const std::int64_t* at, point_id* indices) {
+  auto part_of = [&](std::size_t p) -> const DevicePartOnGpu& { return *static_cast<const DevicePartOnGpu*>(parts[p].part); };
   std::vector<std::unique_ptr<StagingLease>> staging;
   std::size_t most = 0;
-  for (const PartRows& p : parts) {
+  for (std::size_t p = 0; p < parts.size(); ++p) {
     staging.push_back(std::make_unique<StagingLease>());
-    most = std::max(most, static_cast<const DevicePartOnGpu*>(p.part)->chunks().size());
+    most = std::max(most, part_of(p).chunks().size());
+    if (!part_of(p).chunks().empty()) part_of(p).issue(0, **staging[p]);
   }
-  for (std::size_t p = 0; p < parts.size(); ++p)
-    if (!static_cast<const DevicePartOnGpu*>(parts[p].part)->chunks().empty())
-      static_cast<const DevicePartOnGpu*>(parts[p].part)->issue(0, **staging[p]);
   for (std::size_t c = 0; c < most; ++c) {
+    for (std::size_t p = 0; p < parts.size(); ++p)
+      if (c + 1 < part_of(p).chunks().size()) part_of(p).issue(c + 1, **staging[p]);
     for (std::size_t p = 0; p < parts.size(); ++p) {
-      const auto& part = *static_cast<const DevicePartOnGpu*>(parts[p].part);
-      if (c + 1 < part.chunks().size()) part.issue(c + 1, **staging[p]);
-    }
-    for (std::size_t p = 0; p < parts.size(); ++p) {
-      const auto& part = *static_cast<const DevicePartOnGpu*>(parts[p].part);
-      if (c >= part.chunks().size()) continue;
-      const std::span<const std::uint8_t> keep = parts[p].keep;
-      const std::span<const point_id> global = parts[p].global;
-      const Chunk chunk = part.chunks()[c];
-      const point_id* staged = part.arrived(c, **staging[p], keep[chunk.first] ? indices + at[global[chunk.first]] : nullptr);
-      if (!staged) continue;
-      const Buffer<std::int64_t>& offsets = part.offsets();
-      const auto first = static_cast<std::int64_t>(chunk.first), last = static_cast<std::int64_t>(chunk.last);
-#pragma omp parallel for schedule(dynamic, 256)
-      for (std::int64_t r = first; r < last; ++r)
-        if (keep[static_cast<std::size_t>(r)])
-          std::memcpy(indices + at[global[static_cast<std::size_t>(r)]], staged + (offsets[r] - offsets[first]),
-                      static_cast<std::size_t>(offsets[r + 1] - offsets[r]) * sizeof(point_id));
+      if (c >= part_of(p).chunks().size()) continue;
+      const Chunk chunk = part_of(p).chunks()[c];
+      point_id* row_at = parts[p].keep[chunk.first] ? indices + at[parts[p].global[chunk.first]] : nullptr;
+      if (const point_id* staged = part_of(p).arrived(c, **staging[p], row_at))
+        place_rows(parts[p], part_of(p).offsets().data(), chunk.first, chunk.last, staged, at, indices);
     }
   }
 }
