@@ -62,7 +62,9 @@ struct PartStats {
   int device = 0;
   std::size_t owned = 0, halo = 0;  ///< points whose rows it built; points it read as references
   std::int64_t entries = 0;         ///< entries of its rows
-  double seconds = 0;               ///< its search (upload, build, copy back), on its own thread
+  /// Its search on its own thread: upload and build (GPU parts copy their rows back during the
+  /// assembly, unless their lists did not fit on their GPUs), or the whole host-path search.
+  double seconds = 0;
   double build_seconds = 0;         ///< of which the build itself (GPU: kernels; CPU: grid + search)
 };
 
