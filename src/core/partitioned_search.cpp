@@ -12,6 +12,7 @@
 #include "device_part.hpp"
 #include "horizon/cuda.hpp"
 #include "horizon/decomposition.hpp"
+#include "horizon/error.hpp"
 #include "horizon/grid.hpp"
 #include "memory_check.hpp"
 #include "parallel_copy.hpp"
@@ -20,15 +21,14 @@
 namespace horizon::detail {
 namespace {
 
-/// One part: the ids of the points it owns and of its halo (ascending), then its local list
-/// (owned points first, then the halo) and `global`, the global id of each local point.
+/// One part. On the host path: the ids of the points it owns and of its halo (each ascending),
+/// then its local list (owned points first, then the halo) and `global`, the global id of each
+/// local point. A GPU part has only `global` (both ascending together) and `keep`.
 struct Part {
   ScratchBuffer<point_id> owned, halo, global;
   NeighborList list;
   PartStats stats;
-  // A part whose list stays on its GPU: its local points ascend by global id, keep[r] marks
-  // the owned ones.
-  std::unique_ptr<DevicePart> on_device;
+  std::unique_ptr<DevicePart> on_device;  ///< its list, left on its GPU; keep[r]: local point r is its own
   ScratchBuffer<std::uint8_t> keep;
 };
 
@@ -194,6 +194,7 @@ NeighborList search_parts(PointView points, const SearchOptions& options,
   for (std::size_t i = 0; i < points.size(); i += stride)
     for (int a = 0; a < points.dims(); ++a) sample.xyz.push_back(points(i, a));
   const Bounds box = bounds_of(points, omp_get_max_threads());
+  if (count > 64) throw Error(std::to_string(count) + " parts: at most 64 are supported");
   const Decomposition d = Decomposition::rcb(box, sample.view(), count);
   std::vector<Part> parts(static_cast<std::size_t>(count));
   const Membership m = membership(points, d, count, halo_reach(box, points.dims(), options.horizon));
