@@ -187,6 +187,7 @@ NeighborList search_parts(PointView points, const SearchOptions& options,
                           const std::vector<SearchOptions>& part_options, SearchStats& stats) {
   auto clock = std::chrono::steady_clock::now();
   const int count = static_cast<int>(part_options.size());
+  if (count > 64) throw Error(std::to_string(count) + " parts: at most 64 are supported");  // the halo bits
   // Cuts placed on a strided sample of at most 2^20 points: equal counts to within a fraction
   // of a percent, without sorting all the points.
   const std::size_t stride = std::max<std::size_t>(1, points.size() >> 20);
@@ -194,7 +195,6 @@ NeighborList search_parts(PointView points, const SearchOptions& options,
   for (std::size_t i = 0; i < points.size(); i += stride)
     for (int a = 0; a < points.dims(); ++a) sample.xyz.push_back(points(i, a));
   const Bounds box = bounds_of(points, omp_get_max_threads());
-  if (count > 64) throw Error(std::to_string(count) + " parts: at most 64 are supported");
   const Decomposition d = Decomposition::rcb(box, sample.view(), count);
   std::vector<Part> parts(static_cast<std::size_t>(count));
   const Membership m = membership(points, d, count, halo_reach(box, points.dims(), options.horizon));
@@ -213,13 +213,14 @@ NeighborList search_parts(PointView points, const SearchOptions& options,
 #pragma omp parallel for schedule(static)
         for (std::int64_t r = 0; r < static_cast<std::int64_t>(part.global.size()); ++r)
           part.keep[r] = m.owner[part.global[r]] == p;
+        part.stats.owned = static_cast<std::size_t>(std::count(part.keep.begin(), part.keep.end(), 1));
+        part.stats.halo = part.global.size() - part.stats.owned;
       } else {
         part.owned = ids_where(points.size(), [&](std::size_t i) { return m.owner[i] == p; });
         part.halo = ids_where(points.size(), [&](std::size_t i) { return (m.halo[i] & bit) != 0; });
+        part.stats.owned = part.owned.size();
+        part.stats.halo = part.halo.size();
       }
-      part.stats.owned = on_device ? static_cast<std::size_t>(std::count(part.keep.begin(), part.keep.end(), 1))
-                                   : part.owned.size();
-      part.stats.halo = on_device ? part.global.size() - part.stats.owned : part.halo.size();
     }
   };
   part_points(on_devices);
