@@ -3,9 +3,13 @@
 // GPU when there is one (several parts on one GPU exercise the threads and streams as well).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <random>
 #include <string>
+#include <vector>
 
+#include "core/device_part.hpp"
 #include "core/partitioned_search.hpp"
 #include "datasets.hpp"
 #include "same_families.hpp"
@@ -59,6 +63,48 @@ TEST(PartitionedSearch, UnsortedRowsHoldTheSameFamilies) {
   const NeighborList unsorted = detail::search_parts(points.view(), options, std::vector<SearchOptions>(3, options), stats);
   options.sort_rows = true;
   expect_same_families(unsorted, search(points.view(), options));
+}
+
+// The GPU parts' host side, without a GPU: each part's kept rows land at their places whether
+// they come alone or in runs of consecutive places (long runs are streamed), and halo rows,
+// staged among them, land nowhere.
+TEST(PartitionedSearch, PlacedRowsLandAtTheirPlacesAndHaloRowsNowhere) {
+  constexpr std::size_t n = 30000;
+  std::mt19937 random(7);
+  std::vector<int> owner(n), length(n);
+  for (std::size_t g = 0; g < n;) {  // runs of 1 to 3000 rows per part
+    const std::size_t run = std::min<std::size_t>(n - g, 1 + random() % 3000);
+    const int p = static_cast<int>(random() % 2);
+    for (std::size_t k = 0; k < run; ++k) owner[g + k] = p;
+    g += run;
+  }
+  for (std::size_t g = 0; g < n; ++g) length[g] = g % 997 == 0 ? 6000 : static_cast<int>(random() % 60);
+  std::vector<std::int64_t> at(n + 1, 0);
+  for (std::size_t g = 0; g < n; ++g) at[g + 1] = at[g] + length[g];
+  auto id = [](std::size_t g, int k) { return static_cast<point_id>(g * 7 + static_cast<std::size_t>(k)); };
+  std::vector<point_id> indices(static_cast<std::size_t>(at[n]), -1);
+  for (int p = 0; p < 2; ++p) {
+    std::vector<point_id> global, staged;
+    std::vector<std::uint8_t> keep;
+    std::vector<std::int64_t> offsets{0};
+    for (std::size_t g = 0; g < n; ++g) {
+      const bool owned = owner[g] == p, halo = !owned && random() % 5 == 0;
+      if (!owned && !halo) continue;
+      global.push_back(static_cast<point_id>(g));
+      keep.push_back(owned);
+      for (int k = 0; k < length[g]; ++k) staged.push_back(owned ? id(g, k) : -2);
+      offsets.push_back(static_cast<std::int64_t>(staged.size()));
+    }
+    const detail::PartRows part{nullptr, keep, global};
+    for (std::size_t first = 0; first < global.size();) {  // chunks of 1 to 5000 rows
+      const std::size_t last = std::min(global.size(), first + 1 + random() % 5000);
+      detail::place_rows(part, offsets.data(), first, last, staged.data() + offsets[first], at.data(), indices.data());
+      first = last;
+    }
+  }
+  for (std::size_t g = 0; g < n; ++g)
+    for (int k = 0; k < length[g]; ++k)
+      ASSERT_EQ(indices[static_cast<std::size_t>(at[g]) + static_cast<std::size_t>(k)], id(g, k)) << "row " << g;
 }
 
 bool gpu_or_skip() {

@@ -17,7 +17,11 @@ namespace {
 
 constexpr std::size_t huge_page = std::size_t{2} << 20;
 
-void stream_copy(char* to, const char* from, std::size_t bytes) {
+}  // namespace
+
+void stream_copy(void* destination, const void* source, std::size_t bytes) {
+  auto* to = static_cast<char*>(destination);
+  const auto* from = static_cast<const char*>(source);
 #if defined(__SSE2__)
   const std::size_t head = std::min(bytes, (16 - reinterpret_cast<std::uintptr_t>(to) % 16) % 16);
   std::memcpy(to, from, head);
@@ -38,8 +42,6 @@ void stream_copy(char* to, const char* from, std::size_t bytes) {
   std::memcpy(to, from, bytes);
 #endif
 }
-
-}  // namespace
 
 void parallel_copy(void* to, const void* from, std::size_t bytes) {
   auto* dest = static_cast<char*>(to);

@@ -13,6 +13,9 @@ namespace horizon::detail {
 /// destination, so no two cores fault in one huge page.
 void parallel_copy(void* to, const void* from, std::size_t bytes);
 
+/// parallel_copy's copy on the calling thread only.
+void stream_copy(void* to, const void* from, std::size_t bytes);
+
 /// Coordinates [first, first + count) of `points` (flattened, point after point) as doubles.
 void parallel_copy_coordinates(double* to, PointView points, std::size_t first, std::size_t count);
 
