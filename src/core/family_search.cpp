@@ -6,6 +6,7 @@
 
 #include "memory_check.hpp"
 #include "parallel_scan.hpp"
+#include "row_batches.hpp"
 
 namespace horizon::detail {
 
@@ -185,10 +186,7 @@ void search_families_in_batches(const CellIndex& index, const SearchOptions& opt
   begin(offsets.data());
   Buffer<point_id> batch;
   for (std::size_t first = 0; first < n;) {
-    const std::int64_t limit = offsets[first] + std::max<std::int64_t>(batch_entries, 1);
-    std::size_t last = static_cast<std::size_t>(std::upper_bound(offsets.begin() + first + 1, offsets.end(), limit) -
-                                                offsets.begin()) - 1;
-    last = std::max(last, first + 1);
+    const std::size_t last = batch_end(offsets.data(), n, first, batch_entries);
     const std::int64_t entries = offsets[last] - offsets[first];
     if (batch.size() < static_cast<std::size_t>(entries)) batch = Buffer<point_id>(static_cast<std::size_t>(entries));
     pass.indices = batch.data();

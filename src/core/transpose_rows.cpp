@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "parallel_scan.hpp"
+#include "row_batches.hpp"
 
 namespace horizon::detail {
 
@@ -57,8 +58,7 @@ void transpose_rows(const std::int64_t* offsets, const point_id* ids, std::int64
   std::vector<std::int64_t> bucket(static_cast<std::size_t>(threads) * static_cast<std::size_t>(blocks));
   ScratchBuffer<std::uint64_t> scratch;  // (j << 32) | i
   for (std::int64_t first = 0, last; first < n; first = last) {
-    last = std::upper_bound(offsets + first, offsets + n + 1, offsets[first] + wave_entries) - offsets - 1;
-    last = std::max(last, first + 1);  // a row longer than a wave alone
+    last = static_cast<std::int64_t>(batch_end(offsets, static_cast<std::size_t>(n), static_cast<std::size_t>(first), wave_entries));
     const std::int64_t begin = offsets[first], entries = offsets[last] - begin;
     if (static_cast<std::int64_t>(scratch.size()) < entries) scratch.resize(static_cast<std::size_t>(entries));
 #pragma omp parallel num_threads(threads) if (threads > 1)
