@@ -1,7 +1,8 @@
 // The host side of the GPU parts' copy, without a GPU: place_rows over 64 MB chunks of two
 // parts whose rows alternate in the assembled list (as a lattice cut across x gives), against
 // one memcpy of the same bytes. Rows of 120 ids, 2 x 10^6 rows (960 MB). RUN=L (default 1):
-// the parts alternate every L rows instead (a lattice cut across x gives runs of a line's half).
+// the parts alternate every L rows instead (a lattice cut across x gives runs of a line's half;
+// L must divide 10^6).
 // Build: g++ -O2 -std=c++20 -fopenmp -Iinclude -Isrc place_rows_bench.cpp build-dev/src/libhorizon.a -lhwy
 #include <chrono>
 #include <cstdio>
