@@ -6,8 +6,11 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <random>
+#include <vector>
 
 #include "assemble_batches.hpp"
+#include "core/row_batches.hpp"
 #include "datasets.hpp"
 #include "horizon/batched_search.hpp"
 #include "horizon/error.hpp"
@@ -15,6 +18,26 @@
 
 namespace horizon {
 namespace {
+
+// The cut every batched path shares (CPU and GPU lists larger than memory, staging, waves):
+// each batch is the longest run of rows that fits, or one longer row alone, and the batches
+// cover every row once, empty rows too.
+TEST(BatchedSearch, EachBatchIsTheLongestRunOfRowsThatFits) {
+  std::mt19937 random(3);
+  for (std::int64_t entries : {0, 1, 7, 50, 1000}) {
+    std::vector<std::int64_t> offsets{0};
+    for (int r = 0; r < 2000; ++r) offsets.push_back(offsets.back() + (random() % 4 == 0 ? 0 : random() % 120));
+    const std::size_t n = offsets.size() - 1;
+    for (std::size_t first = 0; first < n;) {
+      const std::size_t last = detail::batch_end(offsets.data(), n, first, entries);
+      ASSERT_GT(last, first);
+      ASSERT_LE(last, n);
+      if (last > first + 1) ASSERT_LE(offsets[last] - offsets[first], entries);
+      if (last < n) ASSERT_GT(offsets[last + 1] - offsets[first], entries) << "row " << last << " fits too";
+      first = last;
+    }
+  }
+}
 
 TEST(BatchedSearch, BatchesMakeTheSameListAsOneSearch) {
   for (int dims : {2, 3})
