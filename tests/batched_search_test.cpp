@@ -19,7 +19,7 @@
 namespace horizon {
 namespace {
 
-// The cut every batched path shares (CPU and GPU lists larger than memory, staging, waves):
+// The cut the CPU's batched paths share (lists larger than memory, the transpose's waves):
 // each batch is the longest run of rows that fits, or one longer row alone, and the batches
 // cover every row once, empty rows too.
 TEST(BatchedSearch, EachBatchIsTheLongestRunOfRowsThatFits) {

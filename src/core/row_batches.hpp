@@ -1,6 +1,6 @@
 #pragma once
-// Lists built or moved a batch of whole rows at a time (lists larger than memory, staging
-// buffers, transposes in waves) all cut their rows the same way.
+// Lists built or moved a batch of whole rows at a time (the CPU's lists larger than memory,
+// transposes in waves) cut their rows the same way.
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
