@@ -56,6 +56,59 @@ TEST(CellIndex, LargeClusteredAndFlatInputsGiveTheSerialSort) {
   }
 }
 
+// A sparse grid (a table over every cell would be too large) finds a row of cells in a hash
+// table and a run of its cells from the row's column table or by binary search: the same
+// index, stencils and runs as the dense grid over the same cells.
+TEST(CellIndex, SparseGridsGiveTheDenseGridsStencils) {
+  auto expect_same_ranges = [](const std::vector<CellIndex::Range>& a, const std::vector<CellIndex::Range>& b, int n) {
+    for (int r = 0; r < n; ++r) {
+      EXPECT_EQ(a[r].begin, b[r].begin) << "range " << r;
+      EXPECT_EQ(a[r].end, b[r].end) << "range " << r;
+    }
+  };
+  int compared = 0;
+  for (const int dims : {2, 3})
+    for (auto& data : testing::datasets(dims))
+      for (const int k : {1, 2, 3}) {
+        SCOPED_TRACE(data.name + " " + std::to_string(dims) + "-D k " + std::to_string(k));
+        Grid grid = Grid::fit(data.points.view(), data.horizon, k);
+        if (!grid.dense) continue;
+        const CellIndex dense(data.points.view(), grid, 1);
+        grid.dense = false;
+        const CellIndex sparse(data.points.view(), grid, 1);
+        expect_same_index(dense, sparse);
+        ++compared;
+        const int width = 2 * k + 1, cells = dense.max_stencil_cells();
+        std::vector<CellIndex::Range> a(static_cast<std::size_t>(cells)), b(a.size());
+        for (std::size_t c = 0; c < dense.occupied_cells(); ++c) {
+          int n = dense.stencil(c, a.data());
+          ASSERT_EQ(n, sparse.stencil(c, b.data()));
+          expect_same_ranges(a, b, n);
+          n = dense.upper_stencil(c, a.data());
+          ASSERT_EQ(n, sparse.upper_stencil(c, b.data()));
+          expect_same_ranges(a, b, n);
+          for (int first = -k; first <= k; ++first) {
+            n = dense.stencil_columns(c, first, k - (first + k) / 2, a.data());
+            ASSERT_EQ(n, sparse.stencil_columns(c, first, k - (first + k) / 2, b.data()));
+            expect_same_ranges(a, b, n);
+          }
+          // Cell by cell, empty runs may sit anywhere: every run of a row's cells a .. b is the same.
+          dense.stencil_cells(c, a.data());
+          sparse.stencil_cells(c, b.data());
+          for (int row = 0; row < cells / width; ++row)
+            for (int first = 0; first < width; ++first)
+              for (int last = first; last < width; ++last) {
+                const auto& [da, db] = std::pair{a[row * width + first].begin, a[row * width + last].end};
+                const auto& [sa, sb] = std::pair{b[row * width + first].begin, b[row * width + last].end};
+                ASSERT_EQ(std::max<std::int64_t>(db - da, 0), std::max<std::int64_t>(sb - sa, 0))
+                    << "cell " << c << " row " << row << " columns " << first << ".." << last;
+                if (db > da) ASSERT_EQ(da, sa);
+              }
+        }
+      }
+  EXPECT_GT(compared, 30);
+}
+
 TEST(CellIndex, ImagesHoldNoRowAndCarryTheirOriginalsIds) {
   // Points 0..5 on a line, then images of points 1, 4 and 0 (standing anywhere), on any thread count.
   const std::vector<double> xyz = {0.1, 0, 0.5, 0, 0.9, 0, 1.3, 0, 2.2, 0, 2.6, 0, -0.4, 0, 2.95, 0, 0.05, 0};

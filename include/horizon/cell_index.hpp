@@ -91,6 +91,20 @@ private:
   /// The run of sorted positions of cells x_first .. x_last of the row of cells (cy, cz).
   Range row(std::int64_t x_first, std::int64_t x_last, std::int64_t cy, std::int64_t cz) const;
 
+  /// Sparse grids: an occupied row of cells (cy, cz), its occupied cells [first, end), their
+  /// columns low_x .. high_x, and where its column table starts in column_start_ (-1: none).
+  struct OccupiedRow {
+    std::int64_t cz, cy, first, end, low_x, high_x, table;  ///< first < 0: an empty slot
+  };
+  /// Fills occupied_rows_, a hash table of the occupied rows (half full at most).
+  void index_rows();
+  /// Row (cy, cz) of occupied_rows_, or an empty slot.
+  const OccupiedRow& occupied_row(std::int64_t cy, std::int64_t cz) const { return occupied_rows_[row_slot(cy, cz)]; }
+  /// The slot of occupied_rows_ where row (cy, cz) is, or the empty slot where it would be.
+  std::size_t row_slot(std::int64_t cy, std::int64_t cz) const;
+  /// The first sorted position at or past column x of an occupied row.
+  std::int64_t column_start(const OccupiedRow& row, std::int64_t x) const;
+
   /// The constructor's work, with coordinate(i, a) giving coordinate a of point i (the points,
   /// then the images).
   template <class Coordinate>
@@ -108,6 +122,10 @@ private:
   ScratchBuffer<std::int64_t> cell_rows_end_;  ///< with images: occupied cell -> end of its rows
   ScratchBuffer<std::array<std::int64_t, 3>> cell_coord_;  ///< occupied cell -> (cx, cy, cz)
   ScratchBuffer<std::int64_t> start_by_id_;  ///< dense only: linear cell id -> first position
+  ScratchBuffer<OccupiedRow> occupied_rows_;  ///< sparse only: see index_rows()
+  /// Sparse only: for each column low_x .. high_x of a row with a table, the first sorted
+  /// position at or past it.
+  ScratchBuffer<std::int64_t> column_start_;
 };
 
 }  // namespace horizon

@@ -50,10 +50,12 @@ void CellIndex::build(const Coordinate& coordinate, int threads, Images images) 
   // Written in full below; only the padding is set here (zeroing first cost a serial pass).
   order_.resize(count_ + padding);
   std::fill(order_.begin() + static_cast<std::ptrdiff_t>(count_), order_.end(), -1);
-  if (grid_.dense)
+  if (grid_.dense) {
     sort_dense(coordinate, threads);
-  else
+  } else {
     sort_sparse(coordinate);
+    index_rows();
+  }
   cell_begin_.push_back(static_cast<std::int64_t>(count_));
 
   const auto n = static_cast<std::int64_t>(count_);
@@ -175,6 +177,51 @@ void CellIndex::sort_sparse(const Coordinate& coordinate) {
   }
 }
 
+namespace {
+
+std::uint64_t row_hash(std::int64_t cy, std::int64_t cz) {
+  std::uint64_t h = static_cast<std::uint64_t>(cz) * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(cy);
+  h = (h ^ (h >> 31)) * 0xBF58476D1CE4E5B9ull;
+  return h ^ (h >> 29);
+}
+
+}  // namespace
+
+// A sparse grid's stencils look rows of cells up by (cy, cz), and a row's run by column: a
+// binary search over every occupied cell took about 20 cache misses a lookup (clustered cloud
+// of 10^6 points and one far outlier, k = 2: 2.5-2.7 s to search, against 0.57 s for the same
+// points in a dense grid). Now a hash table finds the row, and a row spanning at most
+// `table_span` columns per occupied cell has a table of its columns (O(N) in all).
+void CellIndex::index_rows() {
+  constexpr std::int64_t table_span = 16;
+  std::size_t occupied = 0;
+  for (std::size_t c = 0; c < cell_coord_.size(); ++c)
+    occupied += c == 0 || cell_coord_[c][0] != cell_coord_[c - 1][0] || cell_coord_[c][1] != cell_coord_[c - 1][1];
+  occupied_rows_.assign(std::bit_ceil(2 * occupied + 1), OccupiedRow{0, 0, -1, -1, 0, 0, -1});
+  column_start_.clear();
+  for (std::size_t c = 0; c < cell_coord_.size();) {
+    const auto [cz, cy, cx] = cell_coord_[c];
+    std::size_t end = c + 1;
+    while (end < cell_coord_.size() && cell_coord_[end][0] == cz && cell_coord_[end][1] == cy) ++end;
+    OccupiedRow row{cz, cy, static_cast<std::int64_t>(c), static_cast<std::int64_t>(end), cx, cell_coord_[end - 1][2], -1};
+    if (row.high_x - row.low_x < table_span * (row.end - row.first)) {
+      row.table = static_cast<std::int64_t>(column_start_.size());
+      for (std::size_t at = c; at < end; ++at)
+        column_start_.resize(static_cast<std::size_t>(row.table + cell_coord_[at][2] - row.low_x) + 1, cell_begin_[at]);
+    }
+    occupied_rows_[row_slot(cy, cz)] = row;
+    c = end;
+  }
+}
+
+std::size_t CellIndex::row_slot(std::int64_t cy, std::int64_t cz) const {
+  const std::size_t mask = occupied_rows_.size() - 1;
+  for (std::size_t slot = row_hash(cy, cz) & mask;; slot = (slot + 1) & mask) {
+    const OccupiedRow& row = occupied_rows_[slot];
+    if (row.first < 0 || (row.cz == cz && row.cy == cy)) return slot;
+  }
+}
+
 int CellIndex::max_stencil_rows() const {
   const int width = 2 * grid_.cells_per_horizon + 1;
   return grid_.dims == 3 ? width * width : width;
@@ -186,10 +233,20 @@ CellIndex::Range CellIndex::row(std::int64_t x_first, std::int64_t x_last, std::
     const auto last = static_cast<std::size_t>(grid_.linear_id(x_last, cy, cz));
     return {start_by_id_[first], start_by_id_[last + 1]};
   }
-  const auto first = std::lower_bound(cell_coord_.begin(), cell_coord_.end(), std::array<std::int64_t, 3>{cz, cy, x_first});
-  const auto last = std::lower_bound(first, cell_coord_.end(), std::array<std::int64_t, 3>{cz, cy, x_last + 1});
-  return {cell_begin_[static_cast<std::size_t>(first - cell_coord_.begin())],
-          cell_begin_[static_cast<std::size_t>(last - cell_coord_.begin())]};
+  // An empty row: one empty run for every cell of it.
+  const OccupiedRow& cells = occupied_row(cy, cz);
+  if (cells.first < 0) return {0, 0};
+  return {column_start(cells, x_first), column_start(cells, x_last + 1)};
+}
+
+// From the row's table, else by a binary search of its cells.
+std::int64_t CellIndex::column_start(const OccupiedRow& row, std::int64_t x) const {
+  if (x <= row.low_x) return cell_begin_[static_cast<std::size_t>(row.first)];
+  if (x > row.high_x) return cell_begin_[static_cast<std::size_t>(row.end)];
+  if (row.table >= 0) return column_start_[static_cast<std::size_t>(row.table + x - row.low_x)];
+  const auto at = std::lower_bound(cell_coord_.begin() + row.first, cell_coord_.begin() + row.end, x,
+                                   [](const std::array<std::int64_t, 3>& cell, std::int64_t v) { return cell[2] < v; });
+  return cell_begin_[static_cast<std::size_t>(at - cell_coord_.begin())];
 }
 
 int CellIndex::stencil(std::size_t c, Range* out) const {
@@ -215,8 +272,19 @@ void CellIndex::stencil_cells(std::size_t c, Range* out) const {
   const std::int64_t reach_z = grid_.dims == 3 ? k : 0;
   const auto [cz, cy, cx] = cell_coord_[c];
   for (std::int64_t dz = -reach_z; dz <= reach_z; ++dz)
-    for (std::int64_t dy = -k; dy <= k; ++dy)
-      for (std::int64_t dx = -k; dx <= k; ++dx) *out++ = row(cx + dx, cx + dx, cy + dy, cz + dz);
+    for (std::int64_t dy = -k; dy <= k; ++dy) {
+      if (grid_.dense) {
+        for (std::int64_t dx = -k; dx <= k; ++dx) *out++ = row(cx + dx, cx + dx, cy + dy, cz + dz);
+        continue;
+      }
+      const OccupiedRow& cells = occupied_row(cy + dy, cz + dz);  // looked up once for its 2k+1 cells
+      std::int64_t begin = cells.first < 0 ? 0 : column_start(cells, cx - k);
+      for (std::int64_t dx = -k; dx <= k; ++dx) {
+        const std::int64_t end = cells.first < 0 ? 0 : column_start(cells, cx + dx + 1);
+        *out++ = {begin, end};
+        begin = end;
+      }
+    }
 }
 
 int CellIndex::upper_stencil(std::size_t c, Range* out) const {
