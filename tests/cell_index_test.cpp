@@ -45,14 +45,16 @@ TEST(CellIndex, AnyThreadCountGivesTheSerialSortStableById) {
 
 TEST(CellIndex, LargeClusteredAndFlatInputsGiveTheSerialSort) {
   // Dense grids of 9x10^4 and 2.5x10^5 cells (radix sorts of two passes), cells holding
-  // thousands of points, more threads than cores.
+  // thousands of points, more threads than cores; the same cells as a sparse grid.
   const PointSet clustered = clustered_cloud(200000, 3, 0.05);
   const PointSet flat = random_cloud(100000, 2);
   for (const auto& [points, horizon] : {std::pair{&clustered, 0.1}, std::pair{&flat, 0.02}}) {
-    const Grid grid = Grid::fit(points->view(), horizon, 1);
+    Grid grid = Grid::fit(points->view(), horizon, 1);
     ASSERT_TRUE(grid.dense);
     const CellIndex serial(points->view(), grid, 1);
     for (const int threads : {2, 5, 16}) expect_same_index(serial, CellIndex(points->view(), grid, threads));
+    grid.dense = false;  // the sparse sort (a parallel merge sort) gives the same index
+    for (const int threads : {1, 2, 5, 16}) expect_same_index(serial, CellIndex(points->view(), grid, threads));
   }
 }
 

@@ -112,7 +112,7 @@ private:
   template <class Coordinate>
   void sort_dense(const Coordinate& coordinate, int threads);
   template <class Coordinate>
-  void sort_sparse(const Coordinate& coordinate);
+  void sort_sparse(const Coordinate& coordinate, int threads);
 
   Grid grid_;
   std::size_t count_ = 0, rows_ = 0;

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <bit>
+#include <functional>
 #include <limits>
+
+#include <parallel/algorithm>
 
 #include "parallel_scan.hpp"
 #include "radix_sort.hpp"
@@ -53,7 +56,7 @@ void CellIndex::build(const Coordinate& coordinate, int threads, Images images) 
   if (grid_.dense) {
     sort_dense(coordinate, threads);
   } else {
-    sort_sparse(coordinate);
+    sort_sparse(coordinate, threads);
     index_rows();
   }
   cell_begin_.push_back(static_cast<std::int64_t>(count_));
@@ -158,15 +161,23 @@ void CellIndex::sort_dense(const Coordinate& coordinate, int threads) {
   }
 }
 
-// Sparse: sort (cz, cy, cx, id) tuples; memory stays O(N) whatever the extent.
+// Sparse: sort (cz, cy, cx, id) tuples; memory stays O(N) whatever the extent. On several
+// threads by libstdc++'s parallel merge sort (the keys are distinct: any thread count gives
+// the same order).
 template <class Coordinate>
-void CellIndex::sort_sparse(const Coordinate& coordinate) {
-  std::vector<std::array<std::int64_t, 4>> keys(count_);
-  for (std::size_t i = 0; i < count_; ++i) {
-    const auto c = cell_of_point(coordinate, grid_, i);
-    keys[i] = {c[2], c[1], c[0], static_cast<std::int64_t>(i)};
+void CellIndex::sort_sparse(const Coordinate& coordinate, int threads) {
+  ScratchBuffer<std::array<std::int64_t, 4>> keys(count_);
+  const auto n = static_cast<std::int64_t>(count_);
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto c = cell_of_point(coordinate, grid_, static_cast<std::size_t>(i));
+    keys[static_cast<std::size_t>(i)] = {c[2], c[1], c[0], i};
   }
-  std::sort(keys.begin(), keys.end());
+  if (threads > 1)
+    __gnu_parallel::sort(keys.begin(), keys.end(), std::less<>(),
+                         __gnu_parallel::multiway_mergesort_tag(static_cast<__gnu_parallel::_ThreadIndex>(threads)));
+  else
+    std::sort(keys.begin(), keys.end());
   for (std::size_t p = 0; p < count_; ++p) {
     order_[p] = static_cast<point_id>(keys[p][3]);
     const std::array<std::int64_t, 3> cell{keys[p][0], keys[p][1], keys[p][2]};
