@@ -215,6 +215,32 @@ TEST(Grid, HugeExtentStaysSparseAndSmall) {
   EXPECT_EQ(list.row_size(0), 0u);
 }
 
+// One far outlier makes a clustered cloud's grid sparse (rows of cells in a hash table, columns
+// in a table or found by binary search): every backend, k, metric and list shape as the oracle.
+TEST(Grid, AFarOutlierMakesTheGridSparseAndTheListsStayExact) {
+  for (int dims : {2, 3}) {
+    PointSet points = clustered_cloud(3000, 4, 0.3, dims, 5);
+    for (int a = 0; a < dims; ++a) points.xyz.push_back(1e6);
+    for (Metric metric : {Metric::euclidean, Metric::chebyshev})
+      for (bool half : {false, true}) {
+        SearchOptions options = options_for(0.2);
+        options.metric = metric;
+        options.half = half;
+        options.threads = 3;
+        const NeighborList expected = brute_force(points.view(), options);
+        for (int k = 1; k <= 3; ++k) {
+          ASSERT_FALSE(Grid::fit(points.view(), 0.2, k).dense);
+          options.cells_per_horizon = k;
+          for (Backend backend : {Backend::serial, Backend::openmp}) {
+            options.backend = backend;
+            EXPECT_EQ(search(points.view(), options), expected)
+                << dims << "-D k " << k << " " << metric_name(metric) << (half ? " half" : "");
+          }
+        }
+      }
+  }
+}
+
 // Cell coordinates are (x - origin) * (1 / side), three roundings: the side's widening by 2^-49
 // of the extent must keep every pair closer than the horizon within k cells, wherever the points
 // lie. The hardest pairs: the first point a few ulps from a cell's face, the second a few ulps
