@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "../../core/device_part.hpp"
-#include "../../core/row_batches.hpp"
 #include "host_copy.cuh"
 #include "launch.cuh"
 #include "horizon/cuda.hpp"
@@ -54,7 +53,8 @@ public:
     offsets_.resize(local.size() + 1);
     copy_to_host(offsets_.data(), list_.offsets(), offsets_.size() * sizeof(std::int64_t), stream);
     for (std::size_t first = 0, rows = local.size(); first < rows;) {
-      const std::size_t last = batch_end(offsets_.data(), rows, first, ids_per_buffer);
+      const auto end = std::upper_bound(offsets_.begin() + first + 1, offsets_.end(), offsets_[first] + ids_per_buffer);
+      const std::size_t last = std::max(static_cast<std::size_t>(end - offsets_.begin()) - 1, first + 1);
       chunks_.push_back({first, last});
       first = last;
     }

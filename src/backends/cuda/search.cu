@@ -21,7 +21,6 @@
 #include <vector>
 
 #include "../../core/memory_check.hpp"
-#include "../../core/row_batches.hpp"
 #include "../backends.hpp"
 #include "cell_kernel.cuh"
 #include "device_index.cuh"
@@ -435,7 +434,10 @@ NeighborList search_cuda(PointView points, const SearchOptions& options, SearchS
     copy_seconds += seconds_since(copy_start);
     for (std::size_t first = 0; first < n;) {
       // Rows up to the batch's size (a single larger row still goes alone).
-      const std::size_t last = batch_end(host_offsets.data(), n, first, batch_entries);
+      const std::int64_t limit = host_offsets[first] + batch_entries;
+      std::size_t last = static_cast<std::size_t>(std::upper_bound(host_offsets.begin() + first + 1, host_offsets.end(), limit) -
+                                                  host_offsets.begin()) - 1;
+      last = std::max(last, first + 1);
       const std::int64_t base = host_offsets[first], entries = host_offsets[last] - base;
       DeviceArray<point_id> rows(static_cast<std::size_t>(entries), meter);
       DeviceArray<point_id> spare(needs_spare(options, counts) ? static_cast<std::size_t>(entries) : 0, meter);
