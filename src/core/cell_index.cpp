@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <bit>
-#include <functional>
+#include <utility>
 #include <limits>
+#include <numeric>
 
 #include <parallel/algorithm>
 
@@ -161,28 +162,46 @@ void CellIndex::sort_dense(const Coordinate& coordinate, int threads) {
   }
 }
 
-// Sparse: sort (cz, cy, cx, id) tuples; memory stays O(N) whatever the extent. On several
-// threads by libstdc++'s parallel merge sort (the keys are distinct: any thread count gives
-// the same order).
+// Sparse: points sorted by (cz, cy, cx, id); memory stays O(N) whatever the extent. When every
+// axis has at most 2^32 cells (any extent short of 2^32 horizons), by stable radix sorts of
+// (cell coordinate, point) keys along x, then y, then z, on every thread; else (and for the
+// runs' order this is the same) by a merge sort of the points. A comparison sort of (cz, cy,
+// cx, id) tuples took 0.18 s for 10^6 points on one thread, against 0.02 s for a dense grid.
 template <class Coordinate>
 void CellIndex::sort_sparse(const Coordinate& coordinate, int threads) {
-  ScratchBuffer<std::array<std::int64_t, 4>> keys(count_);
   const auto n = static_cast<std::int64_t>(count_);
+  ScratchBuffer<std::array<std::int64_t, 3>> cell(count_);  // each point's (cz, cy, cx)
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
   for (std::int64_t i = 0; i < n; ++i) {
     const auto c = cell_of_point(coordinate, grid_, static_cast<std::size_t>(i));
-    keys[static_cast<std::size_t>(i)] = {c[2], c[1], c[0], i};
+    cell[static_cast<std::size_t>(i)] = {c[2], c[1], c[0]};
   }
-  if (threads > 1)
-    __gnu_parallel::sort(keys.begin(), keys.end(), std::less<>(),
+  const bool narrow = std::all_of(grid_.cells.begin(), grid_.cells.end(), [](std::int64_t c) { return c <= std::int64_t{1} << 32; });
+  if (narrow) {
+    ScratchBuffer<std::uint64_t> keys(count_);
+    for (int axis = 0; axis < grid_.dims; ++axis) {
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+      for (std::int64_t p = 0; p < n; ++p) {
+        const std::uint64_t point = axis == 0 ? static_cast<std::uint64_t>(p) : keys[p] & 0xffffffffu;
+        keys[p] = static_cast<std::uint64_t>(cell[point][static_cast<std::size_t>(2 - axis)]) << 32 | point;
+      }
+      detail::radix_sort_high_word(keys, std::bit_width(static_cast<std::uint64_t>(grid_.cells[axis] - 1)), threads);
+    }
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+    for (std::int64_t p = 0; p < n; ++p) order_[p] = static_cast<point_id>(keys[p] & 0xffffffffu);
+  } else {
+    auto before = [&](point_id a, point_id b) {
+      return std::pair{cell[static_cast<std::size_t>(a)], a} < std::pair{cell[static_cast<std::size_t>(b)], b};
+    };
+    std::iota(order_.begin(), order_.begin() + n, point_id{0});
+    __gnu_parallel::sort(order_.begin(), order_.begin() + n, before,
                          __gnu_parallel::multiway_mergesort_tag(static_cast<__gnu_parallel::_ThreadIndex>(threads)));
-  else
-    std::sort(keys.begin(), keys.end());
+  }
   for (std::size_t p = 0; p < count_; ++p) {
-    order_[p] = static_cast<point_id>(keys[p][3]);
-    const std::array<std::int64_t, 3> cell{keys[p][0], keys[p][1], keys[p][2]};
-    if (p == 0 || cell != cell_coord_.back()) {
-      cell_coord_.push_back(cell);
+    const std::array<std::int64_t, 3>& c = cell[static_cast<std::size_t>(order_[p])];
+    const std::array<std::int64_t, 3>* last = p == 0 ? nullptr : &cell_coord_.back();  // compared by hand: not a memcmp call
+    if (!last || c[0] != (*last)[0] || c[1] != (*last)[1] || c[2] != (*last)[2]) {
+      cell_coord_.push_back(c);
       cell_begin_.push_back(static_cast<std::int64_t>(p));
     }
   }
