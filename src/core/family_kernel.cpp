@@ -64,6 +64,37 @@ HWY_INLINE std::int64_t TestCandidates(V px, V py, V pz, VI self, V threshold, c
   return found;
 }
 
+/// TestCandidates for T points at once (a tile of a cell's rows): each vector of candidates is
+/// loaded once for all of them. found[t] += the neighbours of point t; Fill writes them from
+/// out[t] + found[t]. (AMD Zen 5, lattice 10^6, m = 1.5: the loads and the loop's exits were
+/// paid once per row; see bench/results/tiled_rows_1206.)
+template <Metric M, int D, IdTest Ids, bool Fill, int T, class V, class VI>
+HWY_INLINE void TestTile(const V* px, const V* py, const V* pz, const VI* self, V threshold, const double* x,
+                         const double* y, const double* z, const point_id* ids, std::int64_t begin,
+                         std::int64_t end, point_id* const* out, std::int64_t* found) {
+  const hn::DFromV<V> d;
+  const hn::DFromV<VI> di;
+  const auto lanes = static_cast<std::int64_t>(hn::Lanes(d));
+  for (std::int64_t q = begin; q < end; q += lanes) {
+    const V cx = hn::LoadU(d, x + q), cy = hn::LoadU(d, y + q);
+    const V cz = D == 3 ? hn::LoadU(d, z + q) : cx;
+    const VI candidate = hn::LoadU(di, ids + q);
+    const unsigned valid = end - q < lanes ? (1u << (end - q)) - 1 : ~0u;
+    for (int t = 0; t < T; ++t) {
+      const V dx = hn::Sub(px[t], cx), dy = hn::Sub(py[t], cy);
+      const V dz = D == 3 ? hn::Sub(pz[t], cz) : dx;
+      std::uint8_t near[8], other[8] = {0xff};
+      hn::StoreMaskBits(d, hn::Lt(accumulate<M, D>(dx, dy, dz), threshold), near);
+      if constexpr (Ids != IdTest::none)
+        hn::StoreMaskBits(di, Ids == IdTest::above_self ? hn::Gt(candidate, self[t]) : hn::Ne(candidate, self[t]),
+                          other);
+      const unsigned keep = static_cast<unsigned>(near[0] & other[0]) & valid;
+      if constexpr (Fill) StoreSelected(di, candidate, keep, out[t] + found[t]);
+      found[t] += std::popcount(keep);
+    }
+  }
+}
+
 /// SortShortRowTo compiled once per instruction set, not inlined into every pass variant (it
 /// tripled the object's size and its build time under the sanitizers).
 HWY_NOINLINE bool SortRowTo(const point_id* row, std::int64_t count, point_id drop, point_id* out, std::int64_t kept) {
@@ -89,8 +120,10 @@ inline Reach ReachAlong(double t, std::int64_t cell, double reach, int k) {
 /// Radii: pass.row_radius is set (compiled apart, so the one-horizon passes carry none of it).
 template <Metric M, int D, IdTest Ids, bool Fill, bool Radii = false>
 void VisitCells(const FamilyPass& pass, CellRun run) {
+  using V = hn::Vec<hn::ScalableTag<double>>;
   const hn::ScalableTag<double> d;
   const hn::Rebind<point_id, decltype(d)> di;  // one id lane per coordinate lane
+  using VI = hn::Vec<decltype(di)>;
   const auto lanes = static_cast<std::int64_t>(hn::Lanes(d));
   const CellIndex& index = *pass.index;
   const SearchOptions& options = *pass.options;
@@ -105,34 +138,42 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
   const std::int64_t self_found = Ids == IdTest::none && limit > 0 ? 1 : 0;
   std::vector<CellIndex::Range> rows(static_cast<std::size_t>(index.max_stencil_rows()));
   SortedStencil sorted;
-  // A row is written to one of these, then sorted or copied to its exact place once the next
-  // row is found: reading it right after its ids were stored stalled on store forwarding (the
-  // loads span several of the fill's compressed stores: AMD Zen 5, rows of ~15 ids, 47 ns a
-  // row filled and sorted at once against 28 ns one row later).
-  std::vector<point_id> row_buffers;  // two halves, one allocation (a call per run of cells)
-  std::size_t half = 0;
+  // The fill finds a cell's rows a tile of up to `tile` points at a time, each vector of
+  // candidates loaded once for the tile. The count pass of query subsets (rare) and per-point
+  // radii stay one row at a time: tiles there too doubled this file's build time.
+  constexpr int tile = Fill && !Radii ? 4 : 1;
+  // A tile's rows are written to one half of these, then sorted or copied to their exact places
+  // once the next tile is found: reading a row right after its ids were stored stalled on store
+  // forwarding (the loads span several of the fill's compressed stores: AMD Zen 5, rows of ~15
+  // ids, 47 ns a row filled and sorted at once against 28 ns one row later).
+  std::vector<point_id> row_buffers;  // 2 halves of `tile` rows, one allocation (a call per run of cells)
+  std::size_t row_space = 0;
   int current = 0;
-  struct {
+  auto row_buffer = [&](int half, int t) { return row_buffers.data() + (half * tile + t) * row_space; };
+  struct Pending {
     const point_id* row = nullptr;
     std::int64_t count = 0;
     bool sort = false;       // by the network; else copied as it is
     bool drop_self = false;  // the row holds `self`, which the list does not
     point_id self = -1;
     point_id* place = nullptr;
-  } pending;
+  };
+  Pending pending[tile];
+  int pending_rows = 0;
   auto finish_pending = [&] {
-    const auto& [row, count, sort, drop_self, self, place] = pending;
-    if (!row) return;
-    if (sort) {
-      SortRowTo(row, count, drop_self ? self : point_id{-1}, place, count - drop_self);
-    } else {  // around `self`, if present
-      const std::int64_t before = drop_self ? std::lower_bound(row, row + count, self) - row : count;
-      if (before > 0) std::memcpy(place, row, static_cast<std::size_t>(before) * sizeof(point_id));
-      if (count > before + drop_self)
-        std::memcpy(place + before, row + before + drop_self,
-                    static_cast<std::size_t>(count - before - drop_self) * sizeof(point_id));
+    for (int t = 0; t < pending_rows; ++t) {
+      const auto& [row, count, sort, drop_self, self, place] = pending[t];
+      if (sort) {
+        SortRowTo(row, count, drop_self ? self : point_id{-1}, place, count - drop_self);
+      } else {  // around `self`, if present
+        const std::int64_t before = drop_self ? std::lower_bound(row, row + count, self) - row : count;
+        if (before > 0) std::memcpy(place, row, static_cast<std::size_t>(before) * sizeof(point_id));
+        if (count > before + drop_self)
+          std::memcpy(place + before, row + before + drop_self,
+                      static_cast<std::size_t>(count - before - drop_self) * sizeof(point_id));
+      }
     }
-    pending.row = nullptr;
+    pending_rows = 0;
   };
   // Per-point radii: each row tests only the stencil's cells its radius reaches (a point whose
   // radius is a quarter of the class's largest meets about 3.4 of the 27 cells, k = 1). A row
@@ -153,6 +194,23 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
   auto in_batch = [&](point_id id) { return id >= rows_begin && id < rows_end; };
   const std::int64_t base = pass.indices_base;
 
+  // Row t of the tile, `found` ids long (with `self` when `with_self`): counted, or queued to be
+  // sorted (`sorted`: it already is) and put in its place.
+  auto finish_row = [&](int t, point_id self, std::int64_t found, bool sorted, std::int64_t with_self) {
+    if constexpr (Fill) {
+      point_id* const row = row_buffer(current, t);
+      // Sorted in registers by a network, `self` dropped, straight to its place; a longer row
+      // (rare: the stencil is sorted from 256 candidates) by insertion, then copied.
+      // Insertion mispredicts a branch per move on rows in no order: AMD Zen 5, m = 1.5,
+      // shuffled lattice 0.36-0.39 s to fill, 0.19-0.24 s with the network.
+      const bool to_sort = options.sort_rows && !sorted, network = to_sort && found <= short_row;
+      if (to_sort && !network) insertion_sort(row, row + found);
+      pending[pending_rows++] = {row, found, network, with_self != 0, self, pass.indices + (offsets[self] - base)};
+    } else {
+      offsets[self + 1] = found - with_self;
+    }
+  };
+
   for (std::size_t c = run.first; c < run.last; ++c) {
     // A cell of periodic images only (the shell outside the box) has no rows: no stencil to list.
     if (const CellIndex::Range own = index.rows_of(c); own.begin == own.end) continue;
@@ -170,10 +228,10 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
     for (int r = 0; r < row_count; ++r) candidates += rows[r].end - rows[r].begin;
     // Padded for the vector stores of TestCandidates and the loads of SortShortRowTo.
     const std::int64_t row_padding = lanes + static_cast<std::int64_t>(hn::MaxLanes(hn::ScalableTag<point_id>()));
-    if (Fill && half < static_cast<std::size_t>(candidates + row_padding)) {
+    if (Fill && row_space < static_cast<std::size_t>(candidates + row_padding)) {
       finish_pending();
-      half = static_cast<std::size_t>(candidates + row_padding);
-      row_buffers.resize(2 * half);
+      row_space = static_cast<std::size_t>(candidates + row_padding);
+      row_buffers.resize(2 * tile * row_space);
     }
     // Sorted rows: one by one in registers by the network when every row of the cell fits it
     // (m = 1.5: 18 ids; m = 3.015: 118, within AVX-512's 128), else from the stencil sorted once
@@ -194,6 +252,48 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
     if (sorted_stencil) gather();
     if constexpr (Radii) index.stencil_cells(c, cells.data());
     const auto& cell = index.cell_coord(c);  // (cz, cy, cx)
+
+    // The rows of the tile's points (sorted positions), against the stencil's runs of cells or
+    // the sorted stencil, one run.
+    const CellIndex::Range whole{0, sorted_stencil ? sorted.size() : 0};
+    const CellIndex::Range* const runs = sorted_stencil ? &whole : rows.data();
+    const int run_count = sorted_stencil ? 1 : row_count;
+    const double* const from[3] = {sorted_stencil ? sorted.coords(0) : x, sorted_stencil ? sorted.coords(1) : y,
+                                   sorted_stencil ? sorted.coords(2) : z};
+    const point_id* const from_ids = sorted_stencil ? sorted.ids() : order;
+    std::int64_t members[tile];
+    int size = 0;
+    auto test_tile = [&]<int T>(int start) {
+      V px[T], py[T], pz[T];
+      VI ids[T];
+      point_id* out[T];
+      std::int64_t found[T] = {};
+      for (int t = 0; t < T; ++t) {
+        const std::int64_t p = members[start + t];
+        px[t] = hn::Set(d, x[p]), py[t] = hn::Set(d, y[p]), pz[t] = hn::Set(d, z[p]);
+        ids[t] = hn::Set(di, order[p]);
+        out[t] = Fill ? row_buffer(current, t) : nullptr;
+      }
+      for (int r = 0; r < run_count; ++r)
+        TestTile<M, D, Ids, Fill, T>(px, py, pz, ids, threshold, from[0], from[1], from[2], from_ids, runs[r].begin,
+                                     runs[r].end, out, found);
+      if constexpr (Fill) finish_pending();
+      for (int t = 0; t < T; ++t) finish_row(t, order[members[start + t]], found[t], sorted_stencil, self_found);
+      if constexpr (Fill) current ^= 1;
+    };
+    auto flush_tile = [&] {
+      if constexpr (Radii) {
+      } else if constexpr (tile == 1) {
+        if (size == 1) test_tile.template operator()<1>(0);
+      } else {
+        // Tiles of 4, 2 and 1 rows only: each size is another copy of the loop in every pass variant.
+        if (size == 4) test_tile.template operator()<4>(0);
+        if (size == 2 || size == 3) test_tile.template operator()<2>(0);
+        if (size % 2 == 1) test_tile.template operator()<1>(size - 1);
+      }
+      size = 0;
+    };
+
     const auto [first, last] = index.rows_of(c);
     for (std::int64_t p = first; p < last; ++p) {
       const point_id self = order[p];
@@ -206,32 +306,30 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
           __builtin_prefetch(pass.indices + (offsets[order[p + lookahead]] - base));
       if (static_cast<std::size_t>(self) >= queries) continue;  // no family: size stays 0
       if (Fill && !in_batch(self)) continue;
-      // Per-point radii: this row's own threshold, or no row.
-      auto row_threshold = threshold;
-      std::int64_t row_self_found = self_found;
-      if constexpr (Radii) {
-        const double radius = pass.row_radius[p];
-        if (!(radius > 0)) continue;
-        const double row_limit = metric_threshold(M, radius);
-        row_threshold = hn::Set(d, row_limit);
-        row_self_found = Ids == IdTest::none && row_limit > 0 ? 1 : 0;
+      if constexpr (!Radii) {
+        members[size++] = p;
+        if (size == tile) flush_tile();
+        continue;
       }
+      // Per-point radii: this row's own threshold, or no row; one row at a time.
+      const double radius = pass.row_radius[p];
+      if (!(radius > 0)) continue;
+      const double row_limit = metric_threshold(M, radius);
+      const auto row_threshold = hn::Set(d, row_limit);
+      const std::int64_t row_self_found = Ids == IdTest::none && row_limit > 0 ? 1 : 0;
       const auto px = hn::Set(d, x[p]), py = hn::Set(d, y[p]), pz = hn::Set(d, z[p]);
       const auto id = hn::Set(di, self);
-      point_id* const row = row_buffers.data() + current * half;  // empty when counting
+      point_id* const row = Fill ? row_buffer(current, 0) : nullptr;
       std::int64_t found = 0;
-      bool sorted_row = sorted_stencil;  // found in id order from the sorted stencil
-      if (Fill && Radii && options.sort_rows && !pass.candidate_threshold &&
-          beyond_network(self, row_self_found)) {
-        gather();
-        sorted_row = true;
-      }
+      const bool sorted_row = Fill && options.sort_rows && !pass.candidate_threshold &&
+                              beyond_network(self, row_self_found);
       if (sorted_row) {
+        gather();
         found = TestCandidates<M, D, Ids, Fill>(px, py, pz, id, row_threshold, sorted.coords(0), sorted.coords(1),
                                                  sorted.coords(2), sorted.ids(), 0, sorted.size(), row);
-      } else if constexpr (Radii) {
+      } else {
         const Grid& grid = index.grid();
-        const double reach = pass.row_radius[p] * grid.inverse_side;
+        const double reach = radius * grid.inverse_side;
         Reach along[3] = {{0, 0}, {0, 0}, {0, 0}};
         for (int a = 0; a < D; ++a) {
           const double coordinate = a == 0 ? x[p] : a == 1 ? y[p] : z[p];
@@ -250,25 +348,12 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
             else
               found += TestCandidates<M, D, Ids, Fill>(px, py, pz, id, row_threshold, x, y, z, order, begin, end, out);
           }
-      } else {
-        for (int r = 0; r < row_count; ++r)
-          found += TestCandidates<M, D, Ids, Fill>(px, py, pz, id, row_threshold, x, y, z, order, rows[r].begin,
-                                                    rows[r].end, Fill ? row + found : nullptr);
       }
-      if constexpr (Fill) {
-        // Sorted in registers by a network, `self` dropped, straight to its place; a longer row
-        // (rare: the stencil is sorted from 256 candidates) by insertion, then copied.
-        // Insertion mispredicts a branch per move on rows in no order: AMD Zen 5, m = 1.5,
-        // shuffled lattice 0.36-0.39 s to fill, 0.19-0.24 s with the network.
-        const bool to_sort = options.sort_rows && !sorted_row, network = to_sort && found <= short_row;
-        if (to_sort && !network) insertion_sort(row, row + found);
-        finish_pending();
-        pending = {row, found, network, row_self_found != 0, self, pass.indices + (offsets[self] - base)};
-        current ^= 1;
-      } else {
-        offsets[self + 1] = found - row_self_found;
-      }
+      if constexpr (Fill) finish_pending();
+      finish_row(0, self, found, sorted_row, row_self_found);
+      if constexpr (Fill) current ^= 1;
     }
+    if constexpr (!Radii) flush_tile();
   }
   if constexpr (Fill) finish_pending();
 }
