@@ -31,6 +31,40 @@ namespace hn = hwy::HWY_NAMESPACE;
 /// none (full lists whose caller removes `self` afterwards, which saves a compare per vector).
 enum class IdTest { above_self, not_self, none };
 
+/// TestCandidates (below) for T points at once (a tile of a cell's rows): each vector of
+/// candidates is loaded once for all of them. found[t] += the neighbours of point t; Fill writes
+/// them from out[t] + found[t]. (Sorted fill, lattice 10^6: 8-25 % faster at m = 3.015 on AMD Zen 5 and
+/// Intel Xeon, 0-11 % at m = 1.5; bench/results/tiled_rows_1206.)
+template <Metric M, int D, IdTest Ids, bool Fill, int T, bool OwnLimits = false, class V, class VI>
+HWY_INLINE void TestTile(const V* px, const V* py, const V* pz, const VI* self, V threshold, const double* x,
+                         const double* y, const double* z, const point_id* ids, std::int64_t begin,
+                         std::int64_t end, point_id* const* out, std::int64_t* found,
+                         const double* limits = nullptr) {
+  const hn::DFromV<V> d;
+  const hn::DFromV<VI> di;
+  const auto lanes = static_cast<std::int64_t>(hn::Lanes(d));
+  for (std::int64_t q = begin; q < end; q += lanes) {
+    const V cx = hn::LoadU(d, x + q), cy = hn::LoadU(d, y + q);
+    const V cz = D == 3 ? hn::LoadU(d, z + q) : cx;
+    const VI candidate = hn::LoadU(di, ids + q);
+    const V bound = OwnLimits ? hn::Min(threshold, hn::LoadU(d, limits + q)) : threshold;
+    const unsigned valid = end - q < lanes ? (1u << (end - q)) - 1 : ~0u;
+    for (int t = 0; t < T; ++t) {
+      const V dx = hn::Sub(px[t], cx), dy = hn::Sub(py[t], cy);
+      const V dz = D == 3 ? hn::Sub(pz[t], cz) : dx;
+      // Masks cannot change lane size: combine the double and id lanes' masks as bits.
+      std::uint8_t near[8], other[8] = {0xff};
+      hn::StoreMaskBits(d, hn::Lt(accumulate<M, D>(dx, dy, dz), bound), near);
+      if constexpr (Ids != IdTest::none)
+        hn::StoreMaskBits(di, Ids == IdTest::above_self ? hn::Gt(candidate, self[t]) : hn::Ne(candidate, self[t]),
+                          other);
+      const unsigned keep = static_cast<unsigned>(near[0] & other[0]) & valid;
+      if constexpr (Fill) StoreSelected(di, candidate, keep, out[t] + found[t]);
+      found[t] += std::popcount(keep);
+    }
+  }
+}
+
 /// Tests point (px, py, pz) with id `self` against candidates [begin, end) of arrays x, y, z,
 /// ids: a neighbour when within the horizon and passing `Ids`. Returns
 /// their number; Fill also writes their ids to `out` in array order (and up to a vector of junk
@@ -42,57 +76,9 @@ HWY_INLINE std::int64_t TestCandidates(V px, V py, V pz, VI self, V threshold, c
                                        std::int64_t begin, std::int64_t end, point_id* out,
                                        const double* limits = nullptr) {
   std::int64_t found = 0;
-  const hn::DFromV<V> d;
-  const hn::DFromV<VI> di;
-  const auto lanes = static_cast<std::int64_t>(hn::Lanes(d));
-  for (std::int64_t q = begin; q < end; q += lanes) {
-    const V dx = hn::Sub(px, hn::LoadU(d, x + q));
-    const V dy = hn::Sub(py, hn::LoadU(d, y + q));
-    const V dz = D == 3 ? hn::Sub(pz, hn::LoadU(d, z + q)) : dx;
-    // Masks cannot change lane size: combine the double and id lanes' masks as bits.
-    std::uint8_t near[8], other[8] = {0xff};
-    const V bound = OwnLimits ? hn::Min(threshold, hn::LoadU(d, limits + q)) : threshold;
-    hn::StoreMaskBits(d, hn::Lt(accumulate<M, D>(dx, dy, dz), bound), near);
-    const VI candidate = hn::LoadU(di, ids + q);
-    if constexpr (Ids != IdTest::none)
-      hn::StoreMaskBits(di, Ids == IdTest::above_self ? hn::Gt(candidate, self) : hn::Ne(candidate, self), other);
-    unsigned keep = static_cast<unsigned>(near[0] & other[0]);
-    if (end - q < lanes) keep &= (1u << (end - q)) - 1;
-    if constexpr (Fill) StoreSelected(di, candidate, keep, out + found);
-    found += std::popcount(keep);
-  }
+  TestTile<M, D, Ids, Fill, 1, OwnLimits>(&px, &py, &pz, &self, threshold, x, y, z, ids, begin, end, &out, &found,
+                                          limits);
   return found;
-}
-
-/// TestCandidates for T points at once (a tile of a cell's rows): each vector of candidates is
-/// loaded once for all of them. found[t] += the neighbours of point t; Fill writes them from
-/// out[t] + found[t]. (Sorted fill, lattice 10^6: 8-25 % faster at m = 3.015 on AMD Zen 5 and
-/// Intel Xeon, 0-11 % at m = 1.5; bench/results/tiled_rows_1206.)
-template <Metric M, int D, IdTest Ids, bool Fill, int T, class V, class VI>
-HWY_INLINE void TestTile(const V* px, const V* py, const V* pz, const VI* self, V threshold, const double* x,
-                         const double* y, const double* z, const point_id* ids, std::int64_t begin,
-                         std::int64_t end, point_id* const* out, std::int64_t* found) {
-  const hn::DFromV<V> d;
-  const hn::DFromV<VI> di;
-  const auto lanes = static_cast<std::int64_t>(hn::Lanes(d));
-  for (std::int64_t q = begin; q < end; q += lanes) {
-    const V cx = hn::LoadU(d, x + q), cy = hn::LoadU(d, y + q);
-    const V cz = D == 3 ? hn::LoadU(d, z + q) : cx;
-    const VI candidate = hn::LoadU(di, ids + q);
-    const unsigned valid = end - q < lanes ? (1u << (end - q)) - 1 : ~0u;
-    for (int t = 0; t < T; ++t) {
-      const V dx = hn::Sub(px[t], cx), dy = hn::Sub(py[t], cy);
-      const V dz = D == 3 ? hn::Sub(pz[t], cz) : dx;
-      std::uint8_t near[8], other[8] = {0xff};
-      hn::StoreMaskBits(d, hn::Lt(accumulate<M, D>(dx, dy, dz), threshold), near);
-      if constexpr (Ids != IdTest::none)
-        hn::StoreMaskBits(di, Ids == IdTest::above_self ? hn::Gt(candidate, self[t]) : hn::Ne(candidate, self[t]),
-                          other);
-      const unsigned keep = static_cast<unsigned>(near[0] & other[0]) & valid;
-      if constexpr (Fill) StoreSelected(di, candidate, keep, out[t] + found[t]);
-      found[t] += std::popcount(keep);
-    }
-  }
 }
 
 /// SortShortRowTo compiled once per instruction set, not inlined into every pass variant (it
@@ -284,13 +270,12 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       if constexpr (Fill) current ^= 1;
     };
     auto flush_tile = [&] {
-      if constexpr (Radii) {
-      } else if constexpr (tile == 1) {
-        if (size == 1) test_tile.template operator()<1>(0);
-      } else {
+      if constexpr (!Radii) {
         // Tiles of 4, 2 and 1 rows only: each size is another copy of the loop in every pass variant.
-        if (size == 4) test_tile.template operator()<4>(0);
-        if (size == 2 || size == 3) test_tile.template operator()<2>(0);
+        if constexpr (tile == 4) {
+          if (size == 4) test_tile.template operator()<4>(0);
+          if (size == 2 || size == 3) test_tile.template operator()<2>(0);
+        }
         if (size % 2 == 1) test_tile.template operator()<1>(size - 1);
       }
       size = 0;
