@@ -38,7 +38,9 @@ struct SearchOptions {
   /// Only points 0 .. queries-1 get families (0: all); the others are searched but get empty
   /// rows. The distributed layer puts its owned points first and its ghosts after.
   std::size_t queries = 0;
-  std::int64_t gpu_batch_entries = 0; ///< cuda host API: most list entries per batch (0: as fit)
+  /// cuda host API: most list entries on the GPU at once (0: as fit). A longer list goes in
+  /// batches of rows, two at a time (one filling while the other is copied back), each up to half.
+  std::int64_t gpu_batch_entries = 0;
   /// cuda: GPU memory, in bytes, a search sizes its list, hit bits and batches to (0: what is
   /// free), for a solver that keeps its own arrays on the same GPU.
   std::size_t gpu_max_memory = 0;

@@ -50,6 +50,17 @@ __device__ std::int64_t position_of(const Stage<Items>& s, int i) {
   return s.run_begin[r] + (i - s.run_prefix[r]);
 }
 
+/// The occupied cell holding sorted position p (of the `cells` listed in ix.cell_first).
+__device__ std::int64_t cell_at(const DeviceIndexView& ix, std::int64_t cells, std::int64_t p) {
+  std::int64_t lo = 0, hi = cells;  // ix.cell_first[lo] <= p < ix.cell_first[hi]
+  while (hi - lo > 1) {
+    const std::int64_t mid = lo + (hi - lo) / 2;
+    if (ix.cell_first[mid] <= p) lo = mid;
+    else hi = mid;
+  }
+  return lo;
+}
+
 /// One warp sweeps `count` candidates for a point; `candidate(i, id)` names the i-th and says
 /// whether it is a hit. Hits are stored at row[found...] in candidate order; returns the new `found`.
 /// Sweeps of 32 go four at a time where they can: their lookups (an id, an index, a word of
@@ -91,8 +102,11 @@ __global__ void __launch_bounds__(cell_block) cell_families(DeviceIndexView ix, 
   Stage<Items>& s = *reinterpret_cast<Stage<Items>*>(stage_memory);
   const int warp = threadIdx.x / 32;
   const std::int64_t cells = *ix.cell_count;
+  if (cells == 0 || a.position_last <= a.position_first) return;
   const int k = ix.grid.k, reach_z = D == 3 ? k : 0;
-  for (std::int64_t c = blockIdx.x; c < cells; c += gridDim.x) {
+  const std::int64_t first_cell = cell_at(ix, cells, a.position_first);
+  const std::int64_t end_cell = cell_at(ix, cells, a.position_last - 1) + 1;
+  for (std::int64_t c = first_cell + blockIdx.x; c < end_cell; c += gridDim.x) {
     const std::int64_t b = ix.cell_first[c], e = c + 1 < cells ? ix.cell_first[c + 1] : ix.n;
     // The stencil's runs, one per thread (their lookups are independent loads), then their
     // prefix on one thread.
@@ -182,7 +196,7 @@ void launch_cell_fill(const DeviceIndexView& ix, const PassArgs& args, cudaStrea
   HORIZON_CUDA_CHECK(cudaFuncSetAttribute(kernel, cudaFuncAttributeMaxDynamicSharedMemorySize, bytes));
   HORIZON_CUDA_CHECK(cudaDeviceGetAttribute(&processors, cudaDevAttrMultiProcessorCount, device));
   HORIZON_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_processor, kernel, cell_block, bytes));
-  const std::int64_t most = std::max<std::int64_t>(1, ix.n);
+  const std::int64_t most = std::max<std::int64_t>(1, args.position_last - args.position_first);
   const auto blocks = static_cast<unsigned>(std::min<std::int64_t>(most, std::int64_t{processors} * std::max(1, per_processor)));
   kernel<<<blocks, cell_block, bytes, stream>>>(ix, args, narrower, wider_follows);
   check_launch("cell_families");

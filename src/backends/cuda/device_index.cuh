@@ -189,7 +189,8 @@ struct PassArgs {
   unsigned* spill_count;          // ...and their number
   const std::int64_t* offsets;
   point_id* out;
-  point_id first, last;
+  point_id first, last;                   // fills: the rows of ids [first, last)...
+  std::int64_t position_first, position_last;  // ...which lie at these sorted positions
   std::int64_t base;
   unsigned* bits;                     // hit bits (hit_bits.cuh): written by the count pass...
   const std::int64_t* bit_offsets;    // ...at bits + bit_offsets[p], p the sorted position

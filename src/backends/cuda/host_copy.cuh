@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <memory>
 #include <mutex>
+#include <span>
 #include <vector>
 
 #include "../../core/parallel_copy.hpp"
@@ -85,19 +86,33 @@ private:
   std::unique_ptr<Staging> staging_;
 };
 
+/// Bytes [0, bytes) of a device array are written once `event` has completed (on another stream).
+struct Written {
+  std::size_t bytes;
+  cudaEvent_t event;
+};
+
 /// Device -> host: the GPU fills one staging buffer while all cores empty the other. While the
 /// cores wait for the GPU (for the kernels that write `device`, then for each chunk) they fault
 /// in the destination's pages ahead of the copy: faulting in fresh memory costs as much as the
-/// copy itself, and waiting is otherwise idle time.
-void copy_to_host(void* host, const void* device, std::size_t bytes, cudaStream_t stream) {
+/// copy itself, and waiting is otherwise idle time. With `written` (ascending), each chunk
+/// waits for the first event whose bytes cover it, so the copy starts while later parts of
+/// `device` are still being written.
+void copy_to_host(void* host, const void* device, std::size_t bytes, cudaStream_t stream,
+                  std::span<const Written> written = {}) {
   if (bytes == 0) return;
   constexpr std::size_t touch_step = std::size_t{32} << 20;
   auto* to = static_cast<char*>(host);
   std::size_t touched = 0;  // [0, touched) is faulted in or already copied: never touched again
   StagingLease s;
   const std::size_t chunks = (bytes + staging_bytes - 1) / staging_bytes;
+  std::size_t waits_for = 0;  // the entry of `written` that covers the chunk issued last
   auto issue = [&](std::size_t c) {
     const std::size_t at = c * staging_bytes, size = std::min(staging_bytes, bytes - at);
+    if (!written.empty()) {
+      while (waits_for + 1 < written.size() && written[waits_for].bytes < at + size) ++waits_for;
+      HORIZON_CUDA_CHECK(cudaStreamWaitEvent(stream, written[waits_for].event, 0));
+    }
     HORIZON_CUDA_CHECK(cudaMemcpyAsync(s->buffer(c % 2), static_cast<const char*>(device) + at, size,
                                        cudaMemcpyDeviceToHost, stream));
     HORIZON_CUDA_CHECK(cudaEventRecord(s->done(c % 2), stream));

@@ -149,8 +149,8 @@ __global__ void __launch_bounds__(block_size) count_families(DeviceIndexView ix,
 /// hit bits, or without them testing its candidates again.
 template <Metric M, int D, bool Half>
 __global__ void fill_families(DeviceIndexView ix, PassArgs a) {
-  const std::int64_t p = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
-  if (p >= ix.n) return;
+  const std::int64_t p = a.position_first + blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
+  if (p >= a.position_last) return;
   const point_id self = ix.order[p];
   if (self >= ix.queries || self < a.first || self >= a.last) return;
   point_id* row = a.out + (a.offsets[self] - a.base);
@@ -171,10 +171,10 @@ __global__ void __launch_bounds__(staged_block(Rows)) fill_short_rows(DeviceInde
   __shared__ point_id tile[staged_block(Rows) / 32][Rows * pitch];
   const int lane = threadIdx.x % 32;
   point_id* rows = tile[threadIdx.x / 32];
-  const std::int64_t p = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
+  const std::int64_t p = a.position_first + blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
   int found = 0;
   point_id self = 0;
-  if (p < ix.n) {
+  if (p < a.position_last) {
     self = ix.order[p];
     if (self < ix.queries && self >= a.first && self < a.last) {
       const unsigned* words = a.bits + a.bit_offsets[p];
@@ -209,7 +209,9 @@ __global__ void __launch_bounds__(staged_block(Rows)) fill_short_rows(DeviceInde
 template <int D, int Rows>
 void launch_short_rows(const DeviceIndexView& ix, const PassArgs& args, bool sorted, cudaStream_t stream) {
   constexpr int threads = staged_block(Rows);
-  const auto blocks = static_cast<unsigned>((ix.n + threads - 1) / threads);
+  const std::int64_t positions = args.position_last - args.position_first;
+  const auto blocks = static_cast<unsigned>((positions + threads - 1) / threads);
+  if (blocks == 0) return;
   if (sorted) fill_short_rows<D, true, Rows><<<blocks, threads, 0, stream>>>(ix, args);
   else fill_short_rows<D, false, Rows><<<blocks, threads, 0, stream>>>(ix, args);
   check_launch("fill_short_rows");

@@ -17,6 +17,7 @@
 #include <chrono>
 #include <mutex>
 #include <sstream>
+#include <tuple>
 #include <type_traits>
 #include <vector>
 
@@ -29,6 +30,7 @@
 #include "launch.cuh"
 #include "periodic_images.cuh"
 #include "point_kernel.cuh"
+#include "row_pieces.cuh"
 #include "row_sort.cuh"
 #include "horizon/cuda.hpp"
 #include "horizon/grid.hpp"
@@ -71,6 +73,7 @@ PassArgs pass_args(const SearchOptions& o, std::int64_t n) {
   PassArgs a{};
   a.threshold = metric_threshold(o.metric, o.horizon);
   a.sort_bits = id_bits(n);
+  a.position_last = n;
   return a;
 }
 
@@ -122,6 +125,7 @@ struct Counts {
   std::int64_t cells = 0;                            // occupied cells
   std::int64_t long_rows = 0;                        // rows longer than staged_row
   HitBits hits;
+  RowPieces pieces;
 };
 
 /// Counts each family, then an inclusive scan into offsets[1..count] (the rows: the points
@@ -132,6 +136,7 @@ Counts count_offsets(const DeviceIndex& index, const SearchOptions& options, std
   HitBits hits = hit_bits_for(ix, stream, meter);
   DeviceArray<std::int64_t> counts(static_cast<std::size_t>(index.size()), meter), offsets(count + 1, meter),
       summary(5, meter);
+  DeviceArray<unsigned> piece_bounds(2 * row_pieces, meter);
   HORIZON_CUDA_CHECK(cudaMemsetAsync(summary.get(), 0, summary.bytes(), stream));
   PassArgs args = pass_args(options, index.size());
   args.counts = counts.get();
@@ -159,10 +164,12 @@ Counts count_offsets(const DeviceIndex& index, const SearchOptions& options, std
                                      cudaMemcpyDeviceToDevice, stream));
   HORIZON_CUDA_CHECK(cudaMemcpyAsync(summary.get() + 3, ix.cell_count, sizeof(std::int64_t),
                                      cudaMemcpyDeviceToDevice, stream));
+  RowPieces pieces;
+  find_row_pieces(ix, static_cast<std::int64_t>(count), piece_bounds.get(), pieces, stream);
   std::int64_t host[5];
   HORIZON_CUDA_CHECK(cudaMemcpyAsync(host, summary.get(), sizeof(host), cudaMemcpyDeviceToHost, stream));
   HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
-  return Counts{std::move(offsets), host[0], host[1], host[2], host[3], host[4], std::move(hits)};
+  return Counts{std::move(offsets), host[0], host[1], host[2], host[3], host[4], std::move(hits), pieces};
 }
 
 struct MinusBase {
@@ -227,11 +234,12 @@ point_id* fill_rows(const DeviceIndex& index, const SearchOptions& options, cons
   args.out = rows_out;
   args.first = first;
   args.last = last;
+  std::tie(args.position_first, args.position_last) = counts.pieces.positions(first, last);
   args.base = base;
   args.bits = counts.hits.bits.get();
   args.bit_offsets = counts.hits.offsets.get();
   const bool sorted = options.sort_rows;
-  const unsigned blocks = blocks_for(static_cast<std::size_t>(ix.n));
+  const unsigned blocks = blocks_for(static_cast<std::size_t>(args.position_last - args.position_first));
   const Fill kind = fill_kind(counts);
   const bool use_widest_stage =
       kind == Fill::per_cell && sorted && counts.widest > Stage<wide_stage>::capacity;
@@ -262,6 +270,7 @@ point_id* fill_rows(const DeviceIndex& index, const SearchOptions& options, cons
         launch_cell_fill<true, wide_stage, decltype(d)::value>(ix, args, stream, 0, true);
         return launch_cell_fill<true, widest_stage, decltype(d)::value>(ix, args, stream, Stage<wide_stage>::capacity);
       case Fill::per_point:
+        if (blocks == 0) return;
         fill_families<HORIZON_SHAPE(m, d, h)><<<blocks, block_size, 0, stream>>>(ix, args);
         return check_launch("fill_families");
     }
@@ -366,6 +375,42 @@ bool cuda_usable() {
   return cudaGetDeviceCount(&count) == cudaSuccess && count > 0;
 }
 
+/// A CUDA event of one call (creating one takes microseconds).
+struct Event {
+  cudaEvent_t event = nullptr;
+  Event() { HORIZON_CUDA_CHECK(cudaEventCreateWithFlags(&event, cudaEventDisableTiming)); }
+  Event(const Event&) = delete;
+  Event& operator=(const Event&) = delete;
+  ~Event() { cudaEventDestroy(event); }
+};
+
+/// Rows of ids [first, last).
+struct IdRange {
+  point_id first, last;
+};
+
+/// The pieces a list that fits on the GPU is filled in, each copied back while the next fills:
+/// up to 8, of at least two staging buffers each, made of whole row pieces (row_pieces.cuh).
+/// One piece when the rows take the segmented sort (`whole`: it sorts the list at once) or
+/// when the points are not in spatial order: each piece would then visit most sorted positions.
+std::vector<IdRange> list_pieces(const Counts& counts, point_id n, bool whole) {
+  const std::size_t list_bytes = static_cast<std::size_t>(counts.total) * sizeof(point_id);
+  const int wanted = whole ? 1 : static_cast<int>(std::clamp<std::size_t>(list_bytes / (2 * staging_bytes), 1, 8));
+  const auto id_at = [&](int piece) {  // first id of row piece `piece`
+    return static_cast<point_id>(std::min<std::int64_t>(n, counts.pieces.ids_per_piece * piece));
+  };
+  std::vector<IdRange> pieces;
+  std::int64_t visited = 0;  // sorted positions the pieces visit together
+  for (int i = 0; i < wanted; ++i) {
+    pieces.push_back({id_at(i * row_pieces / wanted), i + 1 == wanted ? n : id_at((i + 1) * row_pieces / wanted)});
+    const auto [lo, hi] = counts.pieces.positions(pieces.back().first, pieces.back().last);
+    visited += hi - lo;
+  }
+  const auto [lo, hi] = counts.pieces.positions(0, n);
+  if (2 * visited > 3 * (hi - lo)) return {{0, n}};
+  return pieces;
+}
+
 // Host arrays in, host CSR out. When the list does not fit on the GPU it is built in batches
 // of rows, each filled, sorted and copied back before the next.
 NeighborList search_cuda(PointView points, const SearchOptions& options, SearchStats& stats) {
@@ -415,38 +460,73 @@ NeighborList search_cuda(PointView points, const SearchOptions& options, SearchS
   const std::int64_t fits = std::max<std::int64_t>(1, static_cast<std::int64_t>(usable / (3 * sizeof(point_id))));
   const std::int64_t batch_entries = options.gpu_batch_entries > 0 ? std::min(fits, options.gpu_batch_entries) : fits;
   if (counts.total <= batch_entries) {
-    // One batch: filled while the offsets come back on a second stream (the count pass is
-    // done), then copied back. Lattice 400, m = 1.5: the 512 MB of offsets take ~10 ms.
+    // One batch, filled in pieces (list_pieces) on `stream` and copied back on a second one,
+    // each piece as soon as it is written. The offsets go back first, while the first piece
+    // fills (lattice 400, m = 1.5: the 512 MB of offsets take ~10 ms).
+    const bool whole = needs_spare(options, counts);
     DeviceArray<point_id> rows(static_cast<std::size_t>(counts.total), meter);
-    DeviceArray<point_id> spare(needs_spare(options, counts) ? static_cast<std::size_t>(counts.total) : 0, meter);
-    const point_id* result = fill_rows(index, options, counts, 0, counts.total, 0, static_cast<point_id>(n), rows.get(),
-                                       spare.get(), stream, meter);
-    const auto copy_start = std::chrono::steady_clock::now();
-    {
-      const StreamLease side(options.device);
-      copy_to_host(host_offsets.data(), counts.offsets.get(), counts.offsets.bytes(), side.get());
+    DeviceArray<point_id> spare(whole ? static_cast<std::size_t>(counts.total) : 0, meter);
+    const std::vector<IdRange> pieces = list_pieces(counts, static_cast<point_id>(n), whole);
+    const std::vector<Event> filled(pieces.size());
+    const point_id* result = nullptr;
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      result = fill_rows(index, options, counts, 0, counts.total, pieces[i].first, pieces[i].last, rows.get(),
+                         spare.get(), stream, meter);
+      HORIZON_CUDA_CHECK(cudaEventRecord(filled[i].event, stream));
     }
-    copy_to_host(indices.data(), result, static_cast<std::size_t>(counts.total) * sizeof(point_id), stream);
+    const auto copy_start = std::chrono::steady_clock::now();
+    const StreamLease side(options.device);
+    copy_to_host(host_offsets.data(), counts.offsets.get(), counts.offsets.bytes(), side.get());
+    std::vector<Written> written;
+    for (std::size_t i = 0; i < pieces.size(); ++i)
+      written.push_back({static_cast<std::size_t>(host_offsets[pieces[i].last]) * sizeof(point_id), filled[i].event});
+    copy_to_host(indices.data(), result, static_cast<std::size_t>(counts.total) * sizeof(point_id), side.get(), written);
     copy_seconds = seconds_since(copy_start);
   } else {
+    // Batches of rows, two on the GPU at once: batch i + 1 fills on `stream` while batch i is
+    // copied back on a second one. Each takes up to half of batch_entries (a single larger row
+    // still goes alone, and is then not overlapped with its neighbours).
     auto copy_start = std::chrono::steady_clock::now();
     copy_to_host(host_offsets.data(), counts.offsets.get(), counts.offsets.bytes(), stream);
     copy_seconds += seconds_since(copy_start);
+    std::vector<IdRange> batches;
     for (std::size_t first = 0; first < n;) {
-      // Rows up to the batch's size (a single larger row still goes alone).
-      const std::int64_t limit = host_offsets[first] + batch_entries;
-      std::size_t last = static_cast<std::size_t>(std::upper_bound(host_offsets.begin() + first + 1, host_offsets.end(), limit) -
-                                                  host_offsets.begin()) - 1;
-      last = std::max(last, first + 1);
-      const std::int64_t base = host_offsets[first], entries = host_offsets[last] - base;
-      DeviceArray<point_id> rows(static_cast<std::size_t>(entries), meter);
-      DeviceArray<point_id> spare(needs_spare(options, counts) ? static_cast<std::size_t>(entries) : 0, meter);
-      const point_id* result = fill_rows(index, options, counts, base, entries, static_cast<point_id>(first),
-                                         static_cast<point_id>(last), rows.get(), spare.get(), stream, meter);
-      copy_start = std::chrono::steady_clock::now();
-      copy_to_host(indices.data() + base, result, static_cast<std::size_t>(entries) * sizeof(point_id), stream);
-      copy_seconds += seconds_since(copy_start);
+      const std::int64_t limit = host_offsets[first] + std::max<std::int64_t>(1, batch_entries / 2);
+      const auto end = std::upper_bound(host_offsets.begin() + first + 1, host_offsets.end(), limit);
+      const std::size_t last = std::max(static_cast<std::size_t>(end - host_offsets.begin()) - 1, first + 1);
+      batches.push_back({static_cast<point_id>(first), static_cast<point_id>(last)});
       first = last;
+    }
+    const auto entries = [&](std::size_t i) { return host_offsets[batches[i].last] - host_offsets[batches[i].first]; };
+    const StreamLease side(options.device);
+    DeviceArray<point_id> rows[2] = {DeviceArray<point_id>(0, meter), DeviceArray<point_id>(0, meter)};
+    DeviceArray<point_id> spare[2] = {DeviceArray<point_id>(0, meter), DeviceArray<point_id>(0, meter)};
+    const point_id* result[2] = {};
+    const Event filled[2];
+    const auto fill = [&](std::size_t i) {  // into the buffers of batch i - 2, copied back by now
+      const int b = static_cast<int>(i % 2);
+      rows[b].reset();  // freed before the next is taken
+      spare[b].reset();
+      rows[b] = DeviceArray<point_id>(static_cast<std::size_t>(entries(i)), meter);
+      spare[b] = DeviceArray<point_id>(needs_spare(options, counts) ? static_cast<std::size_t>(entries(i)) : 0, meter);
+      result[b] = fill_rows(index, options, counts, host_offsets[batches[i].first], entries(i), batches[i].first,
+                            batches[i].last, rows[b].get(), spare[b].get(), stream, meter);
+      HORIZON_CUDA_CHECK(cudaEventRecord(filled[b].event, stream));
+    };
+    fill(0);
+    for (std::size_t i = 0; i < batches.size(); ++i) {
+      const bool overlap = i + 1 < batches.size() && entries(i) + entries(i + 1) <= batch_entries;
+      if (overlap) fill(i + 1);
+      copy_start = std::chrono::steady_clock::now();
+      const auto bytes = static_cast<std::size_t>(entries(i)) * sizeof(point_id);
+      const Written written{bytes, filled[i % 2].event};
+      copy_to_host(indices.data() + host_offsets[batches[i].first], result[i % 2], bytes, side.get(), {&written, 1});
+      copy_seconds += seconds_since(copy_start);
+      if (!overlap && i + 1 < batches.size()) {
+        rows[i % 2].reset();  // this batch's buffers go back first
+        spare[i % 2].reset();
+        fill(i + 1);
+      }
     }
   }
   stats.device_to_host_seconds = copy_seconds;
