@@ -92,8 +92,9 @@ __device__ int sweep(int count, point_id* row, int found, Candidate candidate) {
   return found;
 }
 
-/// Fills the rows of the cells whose stencil holds more than `narrower` candidates (a launch
-/// with a smaller stage took the others); with `wider_follows`, those past this stage's
+/// Fills the rows of ids [a.first, a.last) in the cells that meet sorted positions
+/// [a.position_first, a.position_last) and whose stencil holds more than `narrower` candidates
+/// (a launch with a smaller stage took the others); with `wider_follows`, those past this stage's
 /// capacity are left to a launch with a larger one, else swept from global memory.
 template <int D, bool Sorted, int Items>
 __global__ void __launch_bounds__(cell_block) cell_families(DeviceIndexView ix, PassArgs a, int narrower,

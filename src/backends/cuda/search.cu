@@ -411,8 +411,8 @@ std::vector<IdRange> list_pieces(const Counts& counts, point_id n, bool whole) {
   return pieces;
 }
 
-// Host arrays in, host CSR out. When the list does not fit on the GPU it is built in batches
-// of rows, each filled, sorted and copied back before the next.
+// Host arrays in, host CSR out. The fill overlaps the copy back: pieces of a list that fits,
+// batches of rows of one that does not.
 NeighborList search_cuda(PointView points, const SearchOptions& options, SearchStats& stats) {
   select_device(options.device);
   stats.gpu_name = cuda_device_name(options.device);
