@@ -50,6 +50,19 @@ TEST(Cuda, BatchedHostSearchEqualsSerial) {
   EXPECT_EQ(search(points.view(), cuda), search(points.view(), options_for(0.1, Backend::serial)));
 }
 
+TEST(Cuda, BatchesOfSingleLongRowsEqualSerial) {
+  REQUIRE_GPU();
+  // Rows of ~3000 ids (a tight blob) with at most 4000 entries on the GPU at once: each long
+  // row goes alone and, too long to share the GPU with the next batch, is not overlapped with
+  // it; the short rows around them go two batches at a time.
+  PointSet points = random_cloud(5000, 3, 11);
+  const PointSet blob = clustered_cloud(3000, 1, 0.01, 3, 12);
+  points.xyz.insert(points.xyz.end(), blob.xyz.begin(), blob.xyz.end());
+  SearchOptions cuda = options_for(0.5, Backend::cuda);
+  cuda.gpu_batch_entries = 4000;
+  EXPECT_EQ(search(points.view(), cuda), search(points.view(), options_for(0.5, Backend::serial)));
+}
+
 TEST(Cuda, RowsOfEveryLengthAreSorted) {
   REQUIRE_GPU();
   // Families of ~50 and ~100 (warp sorts), ~1000 (block sort), ~3000 (segmented sort) points.
