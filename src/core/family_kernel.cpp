@@ -350,53 +350,79 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
 /// (CellIndex::upper_stencil), and a hit counts for both points (half lists: for the lower id
 /// only). Row point minus candidate, as in the fill: d(i, j) and d(j, i) are equal bit for bit.
 
-/// Tests point (px, py, pz) with id `self` against candidates [begin, end) of x, y, z, ids that
-/// come after position `after`: returns `found` less the hits that count for the point, and
-/// subtracts from gained[q] those that count for candidate q. The vectors start on the same
-/// lanes for every `after` of a cell (a vector of counts stored for one point is loaded whole
+/// Tests a tile of T points (px[t], py[t], pz[t], ids self[t]) against candidates [begin, end)
+/// of x, y, z, ids; with Own, point t only those after position after[t] (the points after it
+/// in its own cell), else every one. found[t] -= the hits that count for point t, gained[q] -=
+/// those that count for candidate q (VecFromMask is -1 per hit). Each vector of candidates and
+/// of their counts is loaded once for the tile, not once per point. The vectors start on the
+/// same lanes for every tile of a cell (a vector of counts stored for one tile is loaded whole
 /// for the next), and no lane past `end` is stored (another thread's to write).
-template <Metric M, int D, bool Half, class V, class VC>
-HWY_INLINE VC CountRun(V px, V py, V pz, VC self, V threshold, const double* x, const double* y, const double* z,
-                       const point_id* ids, std::int64_t after, std::int64_t begin, std::int64_t end,
-                       std::int64_t* gained, VC found) {
+template <Metric M, int D, bool Half, int T, class V, class VC>
+HWY_INLINE void CountTile(const V* px, const V* py, const V* pz, const VC* self, const std::int64_t* after,
+                          V threshold, const double* x, const double* y, const double* z, const point_id* ids,
+                          std::int64_t begin, std::int64_t end, std::int64_t* gained, VC* found) {
   const hn::DFromV<V> d;
   const hn::DFromV<VC> dc;
   const hn::Rebind<point_id, decltype(d)> di;
   const auto lanes = static_cast<std::int64_t>(hn::Lanes(d));
-  if (after >= begin) begin += (after + 1 - begin) / lanes * lanes;
-  const auto lane = hn::Iota(dc, 0), first = hn::Set(dc, after), stop = hn::Set(dc, end);
+  if (after[0] >= begin) begin += (after[0] + 1 - begin) / lanes * lanes;  // after[0] is the tile's least
+  VC first[T];
+  for (int t = 0; t < T; ++t) first[t] = hn::Set(dc, after[t]);
+  const auto lane = hn::Iota(dc, 0), stop = hn::Set(dc, end);
   for (std::int64_t q = begin; q < end; q += lanes) {
-    const V dx = hn::Sub(px, hn::LoadU(d, x + q));
-    const V dy = hn::Sub(py, hn::LoadU(d, y + q));
-    const V dz = D == 3 ? hn::Sub(pz, hn::LoadU(d, z + q)) : dx;
+    const V cx = hn::LoadU(d, x + q), cy = hn::LoadU(d, y + q);
+    const V cz = D == 3 ? hn::LoadU(d, z + q) : cx;
     const VC position = hn::Add(hn::Set(dc, q), lane);
-    const auto inside = hn::And(hn::Gt(position, first), hn::Lt(position, stop));
-    auto hits = hn::And(hn::RebindMask(dc, hn::Lt(accumulate<M, D>(dx, dy, dz), threshold)), inside);
-    auto theirs = hits;
-    if constexpr (Half) {
-      const auto above = hn::Gt(hn::PromoteTo(dc, hn::LoadU(di, ids + q)), self);
-      theirs = hn::AndNot(above, hits);
-      hits = hn::And(hits, above);
+    const auto inside = hn::Lt(position, stop);
+    VC candidate = hn::Zero(dc);
+    if constexpr (Half) candidate = hn::PromoteTo(dc, hn::LoadU(di, ids + q));
+    VC updated = hn::LoadU(dc, gained + q);
+    for (int t = 0; t < T; ++t) {
+      const V dx = hn::Sub(px[t], cx), dy = hn::Sub(py[t], cy);
+      const V dz = D == 3 ? hn::Sub(pz[t], cz) : dx;
+      auto hits = hn::And(hn::RebindMask(dc, hn::Lt(accumulate<M, D>(dx, dy, dz), threshold)),
+                          hn::And(hn::Gt(position, first[t]), inside));
+      auto theirs = hits;
+      if constexpr (Half) {
+        const auto above = hn::Gt(candidate, self[t]);
+        theirs = hn::AndNot(above, hits);
+        hits = hn::And(hits, above);
+      }
+      found[t] = hn::Add(found[t], hn::VecFromMask(dc, hits));
+      updated = hn::Sub(updated, hn::VecFromMask(dc, theirs));
     }
-    found = hn::Add(found, hn::VecFromMask(dc, hits));
-    const VC updated = hn::Sub(hn::LoadU(dc, gained + q), hn::VecFromMask(dc, theirs));
     if (end - q < lanes) hn::BlendedStore(updated, inside, dc, gained + q);
     else hn::StoreU(updated, dc, gained + q);
   }
-  return found;
+}
+
+/// Calls f.template operator()<T>(start) for tiles of 4, 2 and 1 of `count` points.
+template <class F>
+HWY_INLINE void ForTiles(std::int64_t count, F&& f) {
+  std::int64_t start = 0;
+  for (; count - start >= 4; start += 4) f.template operator()<4>(start);
+  if (count - start >= 2) {
+    f.template operator()<2>(start);
+    start += 2;
+  }
+  if (count > start) f.template operator()<1>(start);
 }
 
 /// counts[q] += the family size of the point at sorted position q, for each pair met from the
-/// cells of `run`. A cell with a large upper stencil (m = 3.015: ~350 candidates) gathers it
-/// into one run first, and adds the counts it gained back at the end: one loop per point
-/// instead of one per row of cells. Small stencils (m = 1.5: ~40) cost more to gather than
+/// cells of `run`, a tile of up to four of a cell's points at a time (count pass alone, 2-core
+/// AMD Zen 5 VM, lattice 10^6: 28 % faster at m = 1.5, 18 % at m = 3.015, with AVX-512 and AVX2;
+/// bench/results/count_tiles_1206). A cell with a large upper stencil (m = 3.015: ~350 candidates)
+/// gathers it into one run first, and adds the counts it gained back at the end: one loop per
+/// tile instead of one per row of cells. Small stencils (m = 1.5: ~40) cost more to gather than
 /// their rows' loop exits. (2-core AMD Zen 3 VM, lattice and random 10^6, count pass alone:
 /// 1.2-1.4x the count over every stencil at m = 1.5, 1.3-1.8x at m = 3.015.)
 template <Metric M, int D, bool Half>
 void CountPairs(const FamilyPass& pass, CellRun run, std::int64_t* counts) {
   constexpr std::int64_t gather_from = 128;
+  using V = hn::Vec<hn::ScalableTag<double>>;
   const hn::ScalableTag<double> d;
   const hn::RebindToSigned<decltype(d)> dc;  // counts: one 64-bit lane per coordinate lane
+  using VC = hn::Vec<decltype(dc)>;
   const auto lanes = static_cast<std::int64_t>(hn::Lanes(d));
   const CellIndex& index = *pass.index;
   const double* coords[3] = {index.coords(0).data(), index.coords(1).data(), index.coords(2).data()};
@@ -406,48 +432,73 @@ void CountPairs(const FamilyPass& pass, CellRun run, std::int64_t* counts) {
   std::vector<double> gathered[3];
   std::vector<point_id> gathered_ids;
   std::vector<std::int64_t> gained;
-  auto sum = [&](auto found) { return hn::GetLane(hn::SumOfLanes(dc, found)); };
   for (std::size_t c = run.first; c < run.last; ++c) {
     const int row_count = index.upper_stencil(c, rows.data());
     std::int64_t size = 0;
     for (int r = 0; r < row_count; ++r) size += rows[r].end - rows[r].begin;
     const auto [first, last] = index.points_of(c);
-    if (size < gather_from) {
-      for (std::int64_t p = first; p < last; ++p) {
-        const auto px = hn::Set(d, coords[0][p]), py = hn::Set(d, coords[1][p]), pz = hn::Set(d, coords[2][p]);
-        const auto self = hn::Set(dc, order[p]);
-        auto found = hn::Zero(dc);
-        for (int r = 0; r < row_count; ++r)
-          found = CountRun<M, D, Half>(px, py, pz, self, threshold, coords[0], coords[1], coords[2], order,
-                                       r == 0 ? p : rows[r].begin - 1, rows[r].begin, rows[r].end, counts, found);
-        counts[p] -= sum(found);
+    const bool gather = size >= gather_from;
+    if (gather) {
+      const auto padded = static_cast<std::size_t>(size + lanes);
+      if (gained.size() < padded) {
+        for (auto& axis : gathered) axis.resize(padded);
+        gathered_ids.resize(padded);
+        gained.resize(padded);
       }
-      continue;
+      std::int64_t at = 0;  // the cell's own points come first
+      for (int r = 0; r < row_count; ++r) {
+        const auto length = static_cast<std::size_t>(rows[r].end - rows[r].begin);
+        for (int a = 0; a < D; ++a)
+          std::memcpy(gathered[a].data() + at, coords[a] + rows[r].begin, length * sizeof(double));
+        if (Half) std::memcpy(gathered_ids.data() + at, order + rows[r].begin, length * sizeof(point_id));
+        at += static_cast<std::int64_t>(length);
+      }
+      std::fill_n(gained.begin(), padded, 0);
     }
-    const auto padded = static_cast<std::size_t>(size + lanes);
-    if (gained.size() < padded) {
-      for (auto& axis : gathered) axis.resize(padded);
-      gathered_ids.resize(padded);
-      gained.resize(padded);
+    // Positions [0, size) of the gathered stencil, or the cell's own from `first` on.
+    const std::int64_t base = gather ? 0 : first;
+    const double* const x = gather ? gathered[0].data() : coords[0];
+    const double* const y = gather ? gathered[1].data() : coords[1];
+    const double* const z = gather ? gathered[2].data() : coords[2];
+    const point_id* const ids = gather ? gathered_ids.data() : order;
+    std::int64_t* const tally = gather ? gained.data() : counts;
+    // Inlined by force: called apart, the tile's vectors live in memory that every store of
+    // counts may alias (vector types may alias anything), so they were reloaded after each one;
+    // 30 % slower than the one-point loop before at m = 1.5.
+    auto count_tile = [&]<int T>(std::int64_t start) __attribute__((always_inline)) {
+      V px[T], py[T], pz[T];
+      VC self[T], found[T];
+      std::int64_t after[T];
+      for (int t = 0; t < T; ++t) {
+        const std::int64_t p = base + start + t;
+        px[t] = hn::Set(d, x[p]);
+        py[t] = hn::Set(d, y[p]);
+        pz[t] = hn::Set(d, D == 3 ? z[p] : 0.0);
+        self[t] = hn::Set(dc, order[first + start + t]);
+        found[t] = hn::Zero(dc);
+        after[t] = p;
+      }
+      if (gather) {
+        CountTile<M, D, Half, T>(px, py, pz, self, after, threshold, x, y, z, ids, 0, size, tally, found);
+      } else {
+        CountTile<M, D, Half, T>(px, py, pz, self, after, threshold, x, y, z, ids, rows[0].begin, rows[0].end,
+                                 tally, found);
+        for (int r = 1; r < row_count; ++r) {
+          for (int t = 0; t < T; ++t) after[t] = rows[r].begin - 1;
+          CountTile<M, D, Half, T>(px, py, pz, self, after, threshold, x, y, z, ids, rows[r].begin, rows[r].end,
+                                   tally, found);
+        }
+      }
+      for (int t = 0; t < T; ++t) tally[base + start + t] -= hn::GetLane(hn::SumOfLanes(dc, found[t]));
+    };
+    // Small stencils one point at a time: their runs of cells are one or two vectors long, so a
+    // tile saves few loads and its registers spill (lattice, m = 1.5: 8 % slower in tiles).
+    ForTiles(last - first, count_tile);
+    if (gather) {
+      std::int64_t at = 0;
+      for (int r = 0; r < row_count; ++r)
+        for (std::int64_t q = rows[r].begin; q < rows[r].end; ++q) counts[q] += gained[static_cast<std::size_t>(at++)];
     }
-    std::int64_t at = 0;  // the cell's own points come first
-    for (int r = 0; r < row_count; ++r) {
-      const auto length = static_cast<std::size_t>(rows[r].end - rows[r].begin);
-      for (int a = 0; a < D; ++a) std::memcpy(gathered[a].data() + at, coords[a] + rows[r].begin, length * sizeof(double));
-      if (Half) std::memcpy(gathered_ids.data() + at, order + rows[r].begin, length * sizeof(point_id));
-      at += static_cast<std::int64_t>(length);
-    }
-    std::fill_n(gained.begin(), padded, 0);
-    const double *x = gathered[0].data(), *y = gathered[1].data(), *z = gathered[2].data();
-    for (std::int64_t t = 0; t < last - first; ++t) {
-      const auto px = hn::Set(d, x[t]), py = hn::Set(d, y[t]), pz = hn::Set(d, D == 3 ? z[t] : 0.0);
-      const auto found = CountRun<M, D, Half>(px, py, pz, hn::Set(dc, order[first + t]), threshold, x, y, z,
-                                              gathered_ids.data(), t, 0, size, gained.data(), hn::Zero(dc));
-      gained[static_cast<std::size_t>(t)] -= sum(found);
-    }
-    at = 0;
-    for (int r = 0; r < row_count; ++r)
-      for (std::int64_t q = rows[r].begin; q < rows[r].end; ++q) counts[q] += gained[static_cast<std::size_t>(at++)];
   }
 }
 
