@@ -124,12 +124,13 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
   const std::int64_t self_found = Ids == IdTest::none && limit > 0 ? 1 : 0;
   std::vector<CellIndex::Range> rows(static_cast<std::size_t>(index.max_stencil_rows()));
   SortedStencil sorted;
-  // The fill of full lists (IdTest::none: sorted rows, the default) finds a cell's rows a tile
-  // of up to `tile` points at a time, each vector of candidates loaded once for the tile. Rows
-  // that test ids (unsorted rows, half lists) stay one at a time: there the tiles measured 10-20 %
-  // slower (unsorted, lattice m = 1.5 and 3.015, AMD Zen 5 and Intel Xeon). So do the count
-  // pass of query subsets and per-point radii: tiles there too doubled this file's build time.
-  constexpr int tile = Fill && !Radii && Ids == IdTest::none ? 4 : 1;
+  // The fill finds a cell's rows a tile of up to `tile` points at a time, each vector of
+  // candidates loaded once for the tile. Unsorted rows and half lists too: one at a time, each
+  // row was read for its copy right after its last store and stalled on store forwarding (2-core
+  // AMD Zen 5 VM, lattice 10^6, fill alone: m = 1.5 90 -> 59 ms unsorted, 94 -> 66-77 ms half;
+  // bench/results/count_tiles_1206). The count pass of query subsets and per-point radii stays
+  // one row at a time: tiles there too doubled this file's build time.
+  constexpr int tile = Fill && !Radii ? 4 : 1;
   // A tile's rows are written to one half of these, then sorted or copied to their exact places
   // once the next tile is found: reading a row right after its ids were stored stalled on store
   // forwarding (the loads span several of the fill's compressed stores: AMD Zen 5, rows of ~15
