@@ -88,8 +88,15 @@ public:
   int max_stencil_cells() const { return max_stencil_rows() * (2 * grid_.cells_per_horizon + 1); }
 
 private:
-  /// The run of sorted positions of cells x_first .. x_last of the row of cells (cy, cz).
-  Range row(std::int64_t x_first, std::int64_t x_last, std::int64_t cy, std::int64_t cz) const;
+  /// The run of sorted positions of cells x_first .. x_last of the row of cells (cy, cz). Dense
+  /// grids inline: the stencils ask for 5-9 rows a cell.
+  Range row(std::int64_t x_first, std::int64_t x_last, std::int64_t cy, std::int64_t cz) const {
+    if (!grid_.dense) return sparse_row(x_first, x_last, cy, cz);
+    const auto first = static_cast<std::size_t>(grid_.linear_id(x_first, cy, cz));
+    const auto last = static_cast<std::size_t>(grid_.linear_id(x_last, cy, cz));
+    return {start_by_id_[first], start_by_id_[last + 1]};
+  }
+  Range sparse_row(std::int64_t x_first, std::int64_t x_last, std::int64_t cy, std::int64_t cz) const;
 
   /// Sparse grids: an occupied row of cells (cy, cz), its occupied cells [first, end), their
   /// columns low_x .. high_x, and where its column table starts in column_start_ (-1: none).

@@ -257,12 +257,8 @@ int CellIndex::max_stencil_rows() const {
   return grid_.dims == 3 ? width * width : width;
 }
 
-CellIndex::Range CellIndex::row(std::int64_t x_first, std::int64_t x_last, std::int64_t cy, std::int64_t cz) const {
-  if (grid_.dense) {
-    const auto first = static_cast<std::size_t>(grid_.linear_id(x_first, cy, cz));
-    const auto last = static_cast<std::size_t>(grid_.linear_id(x_last, cy, cz));
-    return {start_by_id_[first], start_by_id_[last + 1]};
-  }
+CellIndex::Range CellIndex::sparse_row(std::int64_t x_first, std::int64_t x_last, std::int64_t cy,
+                                       std::int64_t cz) const {
   // An empty row: one empty run for every cell of it.
   const OccupiedRow& cells = occupied_row(cy, cz);
   if (cells.first < 0) return {0, 0};
