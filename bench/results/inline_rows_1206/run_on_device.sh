@@ -2,7 +2,7 @@
 # One device call, CPU only: this tree (b809c36: count and fills in tiles, dense rows of cells
 # inline) against .deps/old-src (= d073cc5, before the inline rows) on the GPU machine's 16-core
 # host: the search's oracle tests, then horizon_bench (the README's command) alternating, 2 rounds.
-# Usage (device, .deps carried): bash bench/results/readme_cpu_b809c36/run_on_device.sh
+# Usage (device, .deps carried): bash bench/results/inline_rows_1206/run_on_device.sh
 CMAKE_ARGS="-DHORIZON_CUDA=off -DHORIZON_PYTHON=off -DHORIZON_MPI=OFF" source bench/gpu/device_build.sh
 { lscpu | grep -E "Model name|^CPU\(s\)" ; nvidia-smi -L; } > $OUT/machine.txt
 (cd .deps/old-src && cmake -S . -B build-host -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=/opt/deps/usr -DHORIZON_CUDA=off \
