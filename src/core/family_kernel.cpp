@@ -351,9 +351,9 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
 /// (CellIndex::upper_stencil), and a hit counts for both points (half lists: for the lower id
 /// only). Row point minus candidate, as in the fill: d(i, j) and d(j, i) are equal bit for bit.
 
-/// Tests a tile of T points (px[t], py[t], pz[t], ids self[t]) against candidates [begin, end)
-/// of x, y, z, ids; with Own, point t only those after position after[t] (the points after it
-/// in its own cell), else every one. found[t] -= the hits that count for point t, gained[q] -=
+/// Tests a tile of T points (px[t], py[t], pz[t], ids self[t]) against the candidates of
+/// [begin, end) of x, y, z, ids that come after position after[t] (in its own cell, the points
+/// after it; elsewhere every one). found[t] -= the hits that count for point t, gained[q] -=
 /// those that count for candidate q (VecFromMask is -1 per hit). Each vector of candidates and
 /// of their counts is loaded once for the tile, not once per point. The vectors start on the
 /// same lanes for every tile of a cell (a vector of counts stored for one tile is loaded whole
@@ -492,8 +492,6 @@ void CountPairs(const FamilyPass& pass, CellRun run, std::int64_t* counts) {
       }
       for (int t = 0; t < T; ++t) tally[base + start + t] -= hn::GetLane(hn::SumOfLanes(dc, found[t]));
     };
-    // Small stencils one point at a time: their runs of cells are one or two vectors long, so a
-    // tile saves few loads and its registers spill (lattice, m = 1.5: 8 % slower in tiles).
     ForTiles(last - first, count_tile);
     if (gather) {
       std::int64_t at = 0;
