@@ -131,14 +131,19 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
   // bench/results/count_tiles_1206). The count pass of query subsets and per-point radii stays
   // one row at a time: tiles there too doubled this file's build time.
   constexpr int tile = Fill && !Radii ? 4 : 1;
-  // A tile's rows are written to one half of these, then sorted or copied to their exact places
-  // once the next tile is found: reading a row right after its ids were stored stalled on store
-  // forwarding (the loads span several of the fill's compressed stores: AMD Zen 5, rows of ~15
-  // ids, 47 ns a row filled and sorted at once against 28 ns one row later).
-  std::vector<point_id> row_buffers;  // 2 halves of `tile` rows, one allocation (a call per run of cells)
+  // Rows are found into `slots` buffers (up to `ring`, 256 KB), then sorted or copied to their
+  // places all together once the buffers are full. Reading a row right after its ids were
+  // stored stalled on store forwarding (the loads span several of the fill's compressed stores:
+  // AMD Zen 5, rows of ~15 ids, 47 ns a row filled and sorted at once against 28 ns one row
+  // later). And when the input is in no spatial order every row goes to a random place: those
+  // stores, interleaved with the tests, stalled them (AMD Zen 5 VM, 10^6 points, m = 1.5, fill
+  // alone: shuffled lattice 129-135 -> 100 ms, random cloud 131 -> 105-111 ms with 64 rows a
+  // flush against one tile's; lattice order unchanged; bench/results/row_ring_1206).
+  constexpr int ring = Fill ? 64 : 1;
+  int slots = ring;
+  std::vector<point_id> row_buffers;  // `slots` rows, one allocation (a call per run of cells)
   std::size_t row_space = 0;
-  int current = 0;
-  auto row_buffer = [&](int half, int t) { return row_buffers.data() + (half * tile + t) * row_space; };
+  auto row_buffer = [&](int slot) { return row_buffers.data() + slot * row_space; };
   struct Pending {
     const point_id* row = nullptr;
     std::int64_t count = 0;
@@ -147,7 +152,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
     point_id self = -1;
     point_id* place = nullptr;
   };
-  Pending pending[tile];
+  Pending pending[ring];
   int pending_rows = 0;
   auto finish_pending = [&] {
     for (int t = 0; t < pending_rows; ++t) {
@@ -163,6 +168,9 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       }
     }
     pending_rows = 0;
+  };
+  auto make_room = [&](int rows) {
+    if (pending_rows + rows > slots) finish_pending();
   };
   // Per-point radii: each row tests only the stencil's cells its radius reaches (a point whose
   // radius is a quarter of the class's largest meets about 3.4 of the 27 cells, k = 1). A row
@@ -183,11 +191,11 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
   auto in_batch = [&](point_id id) { return id >= rows_begin && id < rows_end; };
   const std::int64_t base = pass.indices_base;
 
-  // Row t of the tile, `found` ids long (with `self` when `with_self`): counted, or queued to be
-  // sorted (`sorted`: it already is) and put in its place.
-  auto finish_row = [&](int t, point_id self, std::int64_t found, bool sorted, std::int64_t with_self) {
+  // The row of `self`, `found` ids long (with `self` when `with_self`): counted, or, found into
+  // the next free buffer, queued to be sorted (`sorted`: it already is) and put in its place.
+  auto finish_row = [&](point_id self, std::int64_t found, bool sorted, std::int64_t with_self) {
     if constexpr (Fill) {
-      point_id* const row = row_buffer(current, t);
+      point_id* const row = row_buffer(pending_rows);
       // Sorted in registers by a network, `self` dropped, straight to its place; a longer row
       // (rare: the stencil is sorted from 256 candidates) by insertion, then copied.
       // Insertion mispredicts a branch per move on rows in no order: AMD Zen 5, m = 1.5,
@@ -220,7 +228,9 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
     if (Fill && row_space < static_cast<std::size_t>(candidates + row_padding)) {
       finish_pending();
       row_space = static_cast<std::size_t>(candidates + row_padding);
-      row_buffers.resize(2 * tile * row_space);
+      const std::size_t fit = (std::size_t{256} << 10) / (row_space * sizeof(point_id));
+      slots = static_cast<int>(std::clamp(fit, std::size_t{2} * tile, std::size_t{ring}));
+      row_buffers.resize(static_cast<std::size_t>(slots) * row_space);
     }
     // Sorted rows: one by one in registers by the network when every row of the cell fits it
     // (m = 1.5: 18 ids; m = 3.015: 118, within AVX-512's 128), else from the stencil sorted once
@@ -257,18 +267,17 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       VI ids[T];
       point_id* out[T];
       std::int64_t found[T] = {};
+      if constexpr (Fill) make_room(T);
       for (int t = 0; t < T; ++t) {
         const std::int64_t p = members[start + t];
         px[t] = hn::Set(d, x[p]), py[t] = hn::Set(d, y[p]), pz[t] = hn::Set(d, z[p]);
         ids[t] = hn::Set(di, order[p]);
-        out[t] = Fill ? row_buffer(current, t) : nullptr;
+        out[t] = Fill ? row_buffer(pending_rows + t) : nullptr;
       }
       for (int r = 0; r < run_count; ++r)
         TestTile<M, D, Ids, Fill, T>(px, py, pz, ids, threshold, from[0], from[1], from[2], from_ids, runs[r].begin,
                                      runs[r].end, out, found);
-      if constexpr (Fill) finish_pending();
-      for (int t = 0; t < T; ++t) finish_row(t, order[members[start + t]], found[t], sorted_stencil, self_found);
-      if constexpr (Fill) current ^= 1;
+      for (int t = 0; t < T; ++t) finish_row(order[members[start + t]], found[t], sorted_stencil, self_found);
     };
     auto flush_tile = [&] {
       if constexpr (!Radii) {
@@ -307,7 +316,8 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       const std::int64_t row_self_found = Ids == IdTest::none && row_limit > 0 ? 1 : 0;
       const auto px = hn::Set(d, x[p]), py = hn::Set(d, y[p]), pz = hn::Set(d, z[p]);
       const auto id = hn::Set(di, self);
-      point_id* const row = Fill ? row_buffer(current, 0) : nullptr;
+      if constexpr (Fill) make_room(1);
+      point_id* const row = Fill ? row_buffer(pending_rows) : nullptr;
       std::int64_t found = 0;
       const bool sorted_row = Fill && options.sort_rows && !pass.candidate_threshold &&
                               beyond_network(self, row_self_found);
@@ -337,9 +347,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
               found += TestCandidates<M, D, Ids, Fill>(px, py, pz, id, row_threshold, x, y, z, order, begin, end, out);
           }
       }
-      if constexpr (Fill) finish_pending();
-      finish_row(0, self, found, sorted_row, row_self_found);
-      if constexpr (Fill) current ^= 1;
+      finish_row(self, found, sorted_row, row_self_found);
     }
     if constexpr (!Radii) flush_tile();
   }
