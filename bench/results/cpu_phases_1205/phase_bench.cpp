@@ -1,5 +1,6 @@
 // Phases of the CPU search (grid, count pass, offsets, scan, list allocation, fill) at a thread
-// count: where does 16-thread scaling go? usage: phase_bench lattice|random M THREADS REPS
+// count: where does 16-thread scaling go? usage: phase_bench lattice|shuffled|random M THREADS REPS
+// (shuffled: the lattice in a random order, as horizon_bench --shuffled)
 #include <omp.h>
 #include <algorithm>
 #include <cstdio>
@@ -10,6 +11,8 @@
 #include "horizon/generate.hpp"
 #include "horizon/grid.hpp"
 #include <hwy/targets.h>
+#include <numeric>
+#include <random>
 using namespace horizon;
 using namespace horizon::detail;
 
@@ -50,6 +53,14 @@ int main(int argc, char** argv) {
   const double m = atof(argv[2]);
   const int threads = atoi(argv[3]), reps = atoi(argv[4]);
   PointSet p = random ? random_cloud(1000000) : lattice(100);
+  if (std::strcmp(argv[1], "shuffled") == 0) {
+    std::vector<std::size_t> order(p.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::shuffle(order.begin(), order.end(), std::mt19937_64(7));
+    const PointSet in_order = p;
+    for (std::size_t i = 0; i < order.size(); ++i)
+      for (int a = 0; a < 3; ++a) p.xyz[3 * i + a] = in_order.xyz[3 * order[i] + a];
+  }
   SearchOptions options;
   options.horizon = m * 0.1;
   options.sort_rows = getenv("UNSORTED") == nullptr;
