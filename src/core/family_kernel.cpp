@@ -131,14 +131,16 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
   // bench/results/count_tiles_1206). The count pass of query subsets and per-point radii stays
   // one row at a time: tiles there too doubled this file's build time.
   constexpr int tile = Fill && !Radii ? 4 : 1;
-  // Rows are found into `slots` buffers (up to `ring`, 256 KB), then sorted or copied to their
+  // Rows are found into `slots` buffers (up to `ring`, 32 KB), then sorted or copied to their
   // places all together once the buffers are full. Reading a row right after its ids were
   // stored stalled on store forwarding (the loads span several of the fill's compressed stores:
   // AMD Zen 5, rows of ~15 ids, 47 ns a row filled and sorted at once against 28 ns one row
   // later). And when the input is in no spatial order every row goes to a random place: those
   // stores, interleaved with the tests, stalled them (AMD Zen 5 VM, 10^6 points, m = 1.5, fill
   // alone: shuffled lattice 129-135 -> 100 ms, random cloud 131 -> 105-111 ms with 64 rows a
-  // flush against one tile's; lattice order unchanged; bench/results/row_ring_1206).
+  // flush against one tile's; lattice order unchanged; bench/results/row_ring_1206). 32 KB: 64
+  // rows at m = 1.5, 11 at m = 3.015, where long rows gain little and lattice order on the
+  // 16-core Xeon lost up to 10 % with 64.
   constexpr int ring = Fill ? 64 : 1;
   int slots = ring;
   std::vector<point_id> row_buffers;  // `slots` rows, one allocation (a call per run of cells)
@@ -228,7 +230,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
     if (Fill && row_space < static_cast<std::size_t>(candidates + row_padding)) {
       finish_pending();
       row_space = static_cast<std::size_t>(candidates + row_padding);
-      const std::size_t fit = (std::size_t{256} << 10) / (row_space * sizeof(point_id));
+      const std::size_t fit = (std::size_t{32} << 10) / (row_space * sizeof(point_id));
       slots = static_cast<int>(std::clamp(fit, std::size_t{2} * tile, std::size_t{ring}));
       row_buffers.resize(static_cast<std::size_t>(slots) * row_space);
     }
