@@ -139,8 +139,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
   // stores, interleaved with the tests, stalled them (AMD Zen 5 VM, 10^6 points, m = 1.5, fill
   // alone: shuffled lattice 129-135 -> 100 ms, random cloud 131 -> 105-111 ms with 64 rows a
   // flush against one tile's; lattice order unchanged; bench/results/row_ring_1206). 32 KB: 64
-  // rows at m = 1.5, 11 at m = 3.015, where long rows gain little and lattice order on the
-  // 16-core Xeon lost up to 10 % with 64.
+  // rows at m = 1.5; 11 at m = 3.015, where 64 long rows gained nothing beyond the noise.
   constexpr int ring = Fill ? 64 : 1;
   int slots = ring;
   std::vector<point_id> row_buffers;  // `slots` rows, one allocation (a call per run of cells)
