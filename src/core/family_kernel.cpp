@@ -103,6 +103,24 @@ inline Reach ReachAlong(double t, std::int64_t cell, double reach, int k) {
           static_cast<int>(std::clamp(high, 0.0, static_cast<double>(k)))};
 }
 
+/// Calls f.template operator()<T>(start) for tiles of 4, 2 and 1 of `count` points, none
+/// larger than `Largest`: each size is another copy of the loop in every pass variant.
+template <int Largest = 4, class F>
+HWY_INLINE void ForTiles(std::int64_t count, F&& f) {
+  std::int64_t start = 0;
+  if constexpr (Largest >= 4)
+    for (; count - start >= 4; start += 4) f.template operator()<4>(start);
+  if constexpr (Largest >= 2) {
+    if (count - start >= 2) {
+      f.template operator()<2>(start);
+      start += 2;
+    }
+    if (count > start) f.template operator()<1>(start);
+  } else {
+    for (; start < count; ++start) f.template operator()<1>(start);
+  }
+}
+
 /// Radii: pass.row_radius is set (compiled apart, so the one-horizon passes carry none of it).
 template <Metric M, int D, IdTest Ids, bool Fill, bool Radii = false>
 void VisitCells(const FamilyPass& pass, CellRun run) {
@@ -263,7 +281,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
     const point_id* const from_ids = sorted_stencil ? sorted.ids() : order;
     std::int64_t members[tile];
     int size = 0;
-    auto test_tile = [&]<int T>(int start) {
+    auto test_tile = [&]<int T>(std::int64_t start) {
       V px[T], py[T], pz[T];
       VI ids[T];
       point_id* out[T];
@@ -281,14 +299,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       for (int t = 0; t < T; ++t) finish_row(order[members[start + t]], found[t], sorted_stencil, self_found);
     };
     auto flush_tile = [&] {
-      if constexpr (!Radii) {
-        // Tiles of 4, 2 and 1 rows only: each size is another copy of the loop in every pass variant.
-        if constexpr (tile == 4) {
-          if (size == 4) test_tile.template operator()<4>(0);
-          if (size == 2 || size == 3) test_tile.template operator()<2>(0);
-        }
-        if (size % 2 == 1) test_tile.template operator()<1>(size - 1);
-      }
+      if constexpr (!Radii) ForTiles<tile>(size, test_tile);
       size = 0;
     };
 
@@ -404,18 +415,6 @@ HWY_INLINE void CountTile(const V* px, const V* py, const V* pz, const VC* self,
     if (end - q < lanes) hn::BlendedStore(updated, inside, dc, gained + q);
     else hn::StoreU(updated, dc, gained + q);
   }
-}
-
-/// Calls f.template operator()<T>(start) for tiles of 4, 2 and 1 of `count` points.
-template <class F>
-HWY_INLINE void ForTiles(std::int64_t count, F&& f) {
-  std::int64_t start = 0;
-  for (; count - start >= 4; start += 4) f.template operator()<4>(start);
-  if (count - start >= 2) {
-    f.template operator()<2>(start);
-    start += 2;
-  }
-  if (count > start) f.template operator()<1>(start);
 }
 
 /// counts[q] += the family size of the point at sorted position q, for each pair met from the
