@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <cstring>
 
+#include <omp.h>
+
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -46,13 +48,20 @@ void stream_copy(void* destination, const void* source, std::size_t bytes) {
 void parallel_copy(void* to, const void* from, std::size_t bytes) {
   auto* dest = static_cast<char*>(to);
   const auto* src = static_cast<const char*>(from);
-  // Piece i ends at the (i + 1)-th 2 MB boundary of the destination past its start.
-  const std::size_t lead = huge_page - reinterpret_cast<std::uintptr_t>(dest) % huge_page;
-  const auto pieces = static_cast<std::int64_t>(bytes <= lead ? 1 : 1 + (bytes - lead + huge_page - 1) / huge_page);
+  // Pieces of 2 MB, each ending at a 2 MB boundary of the destination, when there are enough for
+  // every core; a smaller copy (the chunks at either end of a staged transfer) is cut into one
+  // piece per core instead of leaving most of them idle.
+  const auto threads = static_cast<std::size_t>(omp_get_max_threads());
+  constexpr std::size_t page = 4096, smallest = 16 * page;
+  const std::size_t piece =
+      bytes >= threads * huge_page ? huge_page : std::max(smallest, (bytes / threads + page - 1) / page * page);
+  // Piece i ends at the (i + 1)-th multiple of `piece` in the address space past the start.
+  const std::size_t lead = piece - reinterpret_cast<std::uintptr_t>(dest) % piece;
+  const auto pieces = static_cast<std::int64_t>(bytes <= lead ? 1 : 1 + (bytes - lead + piece - 1) / piece);
 #pragma omp parallel for schedule(static) if (pieces > 2)
   for (std::int64_t i = 0; i < pieces; ++i) {
-    const std::size_t begin = i == 0 ? 0 : lead + static_cast<std::size_t>(i - 1) * huge_page;
-    const std::size_t end = std::min(bytes, lead + static_cast<std::size_t>(i) * huge_page);
+    const std::size_t begin = i == 0 ? 0 : lead + static_cast<std::size_t>(i - 1) * piece;
+    const std::size_t end = std::min(bytes, lead + static_cast<std::size_t>(i) * piece);
     stream_copy(dest + begin, src + begin, end - begin);
   }
 }

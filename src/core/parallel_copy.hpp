@@ -10,7 +10,8 @@ namespace horizon::detail {
 /// Copies with non-temporal stores where the CPU has them (the destination is not read back
 /// first): on the H200 host a staged device -> host copy ran at 1.3x the PCIe floor this way
 /// and at 1.9x with memcpy's ordinary stores. Each core takes whole 2 MB pieces of the
-/// destination, so no two cores fault in one huge page.
+/// destination, so no two cores fault in one huge page, unless the copy is too small to give
+/// every core one.
 void parallel_copy(void* to, const void* from, std::size_t bytes);
 
 /// parallel_copy's copy on the calling thread only.

@@ -14,6 +14,7 @@
 
 #include "../../core/parallel_copy.hpp"
 #include "device_memory.hpp"
+#include "staging_chunks.hpp"
 
 namespace horizon::detail {
 namespace {
@@ -105,10 +106,11 @@ void copy_to_host(void* host, const void* device, std::size_t bytes, cudaStream_
   auto* to = static_cast<char*>(host);
   std::size_t touched = 0;  // [0, touched) is faulted in or already copied: never touched again
   StagingLease s;
-  const std::size_t chunks = (bytes + staging_bytes - 1) / staging_bytes;
+  const std::vector<StagedChunk> plan = staging_chunks(bytes, staging_bytes);
+  const std::size_t chunks = plan.size();
   std::size_t waits_for = 0;  // the entry of `written` that covers the chunk issued last
   auto issue = [&](std::size_t c) {
-    const std::size_t at = c * staging_bytes, size = std::min(staging_bytes, bytes - at);
+    const auto [at, size] = plan[c];
     if (!written.empty()) {
       while (waits_for + 1 < written.size() && written[waits_for].bytes < at + size) ++waits_for;
       HORIZON_CUDA_CHECK(cudaStreamWaitEvent(stream, written[waits_for].event, 0));
@@ -120,13 +122,13 @@ void copy_to_host(void* host, const void* device, std::size_t bytes, cudaStream_
   issue(0);
   for (std::size_t c = 0; c < chunks; ++c) {
     if (c + 1 < chunks) issue(c + 1);
+    const auto [at, size] = plan[c];
     while (touched < bytes && cudaEventQuery(s->done(c % 2)) == cudaErrorNotReady) {
-      const std::size_t size = std::min(touch_step, bytes - touched);
-      parallel_touch(to + touched, size);
-      touched += size;
+      const std::size_t step = std::min({touch_step, size, bytes - touched});  // no longer than the chunk's DMA
+      parallel_touch(to + touched, step);
+      touched += step;
     }
     HORIZON_CUDA_CHECK(cudaEventSynchronize(s->done(c % 2)));
-    const std::size_t at = c * staging_bytes, size = std::min(staging_bytes, bytes - at);
     parallel_copy(to + at, s->buffer(c % 2), size);
     touched = std::max(touched, at + size);
   }
@@ -136,11 +138,10 @@ void copy_to_host(void* host, const void* device, std::size_t bytes, cudaStream_
 /// cores fill one staging buffer while the GPU takes the other.
 void upload_coordinates(double* device, PointView points, cudaStream_t stream) {
   const std::size_t values = points.size() * static_cast<std::size_t>(points.dims());
-  const std::size_t per_chunk = staging_bytes / sizeof(double);
-  const std::size_t chunks = (values + per_chunk - 1) / per_chunk;
+  const std::vector<StagedChunk> plan = staging_chunks(values * sizeof(double), staging_bytes);
   StagingLease s;
-  for (std::size_t c = 0; c < chunks; ++c) {
-    const std::size_t first = c * per_chunk, count = std::min(per_chunk, values - first);
+  for (std::size_t c = 0; c < plan.size(); ++c) {
+    const std::size_t first = plan[c].at / sizeof(double), count = plan[c].size / sizeof(double);
     auto* buffer = reinterpret_cast<double*>(s->buffer(c % 2));
     if (c >= 2) HORIZON_CUDA_CHECK(cudaEventSynchronize(s->done(c % 2)));  // its last upload is done
     parallel_copy_coordinates(buffer, points, first, count);
