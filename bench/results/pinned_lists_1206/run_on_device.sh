@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# One device call: this tree (the host path page-locks the lists' pool's blocks it reuses and
+# copies into them by DMA alone, src/backends/cuda/pinned_blocks.cuh) against
+# .deps/old-src (5e51109, the staging ramp). Both built with CUDA; the GPU suite and the copy tests (GPU
+# required) on this one; horizon_gpu_bench of both trees alternating, ROUNDS rounds.
+# Usage (device, carry [".deps"]): [ROUNDS=3] bash bench/results/pinned_lists_1206/run_on_device.sh
+CMAKE_ARGS="-DHORIZON_PYTHON=off -DHORIZON_MPI=OFF" source bench/gpu/device_build.sh
+source bench/gpu/device_build_old.sh horizon_gpu_bench
+{ nvidia-smi -L; lscpu | grep -E "Model name|^CPU\(s\)"; } > $OUT/machine.txt
+(cd build-gpu && HORIZON_REQUIRE_GPU=1 timeout 240 ctest -j 8 -R "cuda|Cuda|Buffer|StagingChunks" > $OUT/gpu_tests.txt 2>&1)
+grep -E "tests passed|tests failed" $OUT/gpu_tests.txt; grep -E "\(Failed\)|Timeout" $OUT/gpu_tests.txt | head
+ARGS="--sizes ${SIZES:-100,200,400} --cloud-points 8000000 --reps 5 --cpu-max-n 0"
+for round in $(seq ${ROUNDS:-3}); do for tree in new old; do
+  bin=build-gpu/bin; [ $tree = old ] && bin=$OLD/bin
+  timeout 100 $bin/horizon_gpu_bench $ARGS > $OUT/${tree}_$round.csv 2>> $OUT/errors.txt
+done; done
+rm -f $OUT/configure_old.log  # at most 8 files come back
+python3 - $OUT <<'PY' | tee $OUT/summary.txt
+import csv, sys, glob
+for f in sorted(glob.glob(sys.argv[1] + '/*_[0-9].csv')):
+    rows = list(csv.DictReader(l for l in open(f) if not l.startswith('#')))
+    print(f.split('/')[-1])
+    for r in rows:
+        print(f"  {r['problem'][:4]}{r['n']}/{r['m']}: host {float(r['host_s'])*1e3:.1f} ms = {r['host_vs_copy_floor']} x floor "
+              f"(h2d {float(r['h2d_s'])*1e3:.1f}, grid {float(r['grid_s'])*1e3:.1f}, kernels {float(r['kernels_s'])*1e3:.1f}, d2h {float(r['d2h_s'])*1e3:.1f}); first {r['host_first_vs_copy_floor']}, second {float(r.get('host_second_s') or 0)*1e3:.1f} ms")
+PY
