@@ -7,7 +7,7 @@
 CMAKE_ARGS="-DHORIZON_PYTHON=off -DHORIZON_MPI=OFF" source bench/gpu/device_build.sh
 source bench/gpu/device_build_old.sh horizon_gpu_bench
 { nvidia-smi -L; lscpu | grep -E "Model name|^CPU\(s\)"; } > $OUT/machine.txt
-(cd build-gpu && HORIZON_REQUIRE_GPU=1 timeout 240 ctest -j 8 -R "cuda|Cuda|Buffer|StagingChunks" > $OUT/gpu_tests.txt 2>&1)
+(cd build-gpu && HORIZON_REQUIRE_GPU=1 timeout 240 ctest -j 8 -R "${TESTS:-cuda|Cuda|Buffer|StagingChunks}" > $OUT/gpu_tests.txt 2>&1)
 grep -E "tests passed|tests failed" $OUT/gpu_tests.txt; grep -E "\(Failed\)|Timeout" $OUT/gpu_tests.txt | head
 ARGS="--sizes ${SIZES:-100,200,400} --cloud-points ${CLOUD:-8000000} --reps 5 --cpu-max-n 0"
 for round in $(seq ${ROUNDS:-3}); do for tree in new old; do
