@@ -20,18 +20,21 @@ TEST(ParallelCopy, CopiesEveryByteAtAnyAlignmentAndSize) {
   std::iota(from.begin(), from.end(), 0);  // wraps every 256 bytes: misplaced bytes show
   const int threads = omp_get_max_threads();
   // 16 threads: copies under 32 MB are cut into one piece per thread, not into 2 MB pieces.
-  for (int copiers : {1, 3, 16})
-  for (std::size_t size : {std::size_t{0}, std::size_t{1}, std::size_t{15}, std::size_t{64}, std::size_t{1000},
-                           2 * mib - 3, 2 * mib, 2 * mib + 77, 9 * mib})
-    for (std::size_t from_offset : {0, 1, 8, 37})
-      for (std::size_t to_offset : {0, 3, 16, 250}) {
-        omp_set_num_threads(copiers);
-        std::fill(to.begin(), to.end(), 0xEE);
-        horizon::detail::parallel_copy(to.data() + to_offset, from.data() + from_offset, size);
-        for (std::size_t i = 0; i < to_offset; ++i) ASSERT_EQ(to[i], 0xEE);
-        ASSERT_EQ(std::memcmp(to.data() + to_offset, from.data() + from_offset, size), 0) << "size " << size;
-        for (std::size_t i = to_offset + size; i < to_offset + size + 64 && i < to.size(); ++i) ASSERT_EQ(to[i], 0xEE);
-      }
+  for (int copiers : {1, 3, 16}) {
+    omp_set_num_threads(copiers);
+    for (std::size_t size : {std::size_t{0}, std::size_t{1}, std::size_t{15}, std::size_t{64}, std::size_t{1000},
+                             2 * mib - 3, 2 * mib, 2 * mib + 77, 9 * mib})
+      for (std::size_t from_offset : {0, 1, 8, 37})
+        for (std::size_t to_offset : {0, 3, 16, 250}) {
+          std::fill(to.begin(), to.end(), 0xEE);
+          horizon::detail::parallel_copy(to.data() + to_offset, from.data() + from_offset, size);
+          for (std::size_t i = 0; i < to_offset; ++i) ASSERT_EQ(to[i], 0xEE);
+          ASSERT_EQ(std::memcmp(to.data() + to_offset, from.data() + from_offset, size), 0)
+              << "size " << size << ", " << copiers << " threads";
+          for (std::size_t i = to_offset + size; i < to_offset + size + 64 && i < to.size(); ++i)
+            ASSERT_EQ(to[i], 0xEE);
+        }
+  }
   omp_set_num_threads(threads);
 }
 
