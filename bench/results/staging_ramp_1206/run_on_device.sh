@@ -4,6 +4,7 @@
 # .deps/old-src (main before it). Both built with CUDA; the GPU suite and the copy tests (GPU
 # required) on this one; horizon_gpu_bench of both trees alternating, ROUNDS rounds.
 # Usage (device, carry [".deps"]): [ROUNDS=3] bash bench/results/staging_ramp_1206/run_on_device.sh
+# (Its summary printer, inline when the call ran, is now bench/gpu/host_path_summary.py: same output.)
 CMAKE_ARGS="-DHORIZON_PYTHON=off -DHORIZON_MPI=OFF" source bench/gpu/device_build.sh
 source bench/gpu/device_build_old.sh horizon_gpu_bench
 { nvidia-smi -L; lscpu | grep -E "Model name|^CPU\(s\)"; } > $OUT/machine.txt
@@ -14,12 +15,4 @@ for round in $(seq ${ROUNDS:-3}); do for tree in new old; do
   bin=build-gpu/bin; [ $tree = old ] && bin=$OLD/bin
   timeout 100 $bin/horizon_gpu_bench $ARGS > $OUT/${tree}_$round.csv 2> $OUT/${tree}_$round.err
 done; done
-python3 - $OUT <<'PY' | tee $OUT/summary.txt
-import csv, sys, glob
-for f in sorted(glob.glob(sys.argv[1] + '/*_[0-9].csv')):
-    rows = list(csv.DictReader(l for l in open(f) if not l.startswith('#')))
-    print(f.split('/')[-1])
-    for r in rows:
-        print(f"  {r['problem'][:4]}{r['n']}/{r['m']}: host {float(r['host_s'])*1e3:.1f} ms = {r['host_vs_copy_floor']} x floor "
-              f"(h2d {float(r['h2d_s'])*1e3:.1f}, grid {float(r['grid_s'])*1e3:.1f}, kernels {float(r['kernels_s'])*1e3:.1f}, d2h {float(r['d2h_s'])*1e3:.1f}); first {r['host_first_vs_copy_floor']}")
-PY
+python3 bench/gpu/host_path_summary.py $OUT | tee $OUT/summary.txt
