@@ -5,16 +5,8 @@
 # (../cpu_phases_1205/phase_bench.cpp, min of the reps) and the whole search against the
 # in-benchmark textbook list, trees alternating.
 # Usage (device, .deps carried): bash bench/results/row_ring_1206/run_on_device.sh
-CMAKE_ARGS="-DHORIZON_CUDA=off -DHORIZON_PYTHON=off -DHORIZON_MPI=OFF" source bench/gpu/device_build.sh
-{ lscpu | grep -E "Model name|^CPU\(s\)|Flags" | cut -c1-300; nvidia-smi -L; } > $OUT/machine.txt
-(cd .deps/old-src && cmake -S . -B build-host -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=/opt/deps/usr -DHORIZON_CUDA=off \
-  -DHORIZON_PYTHON=off -DHORIZON_TESTS=OFF -DHORIZON_BENCH=ON -DHORIZON_MPI=OFF > /dev/null && cmake --build build-host -j16 > /dev/null) &
-timeout 200 $BUILD/bin/horizon_tests --gtest_filter='SimdTargets.*:*Search*:Grid.*:Oracle*:CellIndex.*:*Half*:*Unsorted*:*Radii*' > $OUT/tests.txt 2>&1
-grep -E "^\[  (PASSED|FAILED) |FAILED  \]" $OUT/tests.txt | head -20
-wait
-I="-I/opt/deps/usr/include"; L="-L/opt/deps/usr/lib/x86_64-linux-gnu"
-g++ -O2 -std=c++20 -fopenmp -Iinclude -Isrc $I bench/results/cpu_phases_1205/phase_bench.cpp $BUILD/src/libhorizon.a $L -lhwy -o /tmp/pb_new
-g++ -O2 -std=c++20 -fopenmp -I.deps/old-src/include -I.deps/old-src/src $I bench/results/cpu_phases_1205/phase_bench.cpp .deps/old-src/build-host/src/libhorizon.a $L -lhwy -o /tmp/pb_old
+# (The setup, inline when the call ran, is now bench/cpu/device_host_ab_setup.sh: same steps.)
+source bench/cpu/device_host_ab_setup.sh
 for round in 1 2; do for tree in new old; do
   for m in 1.5 3.015; do for t in 1 16; do for w in lattice shuffled random; do
     echo "== $tree round $round $w m=$m threads=$t"; /tmp/pb_$tree $w $m $t 3 | grep -E " fill"
@@ -22,7 +14,7 @@ for round in 1 2; do for tree in new old; do
   for w in lattice shuffled; do echo "== $tree round $round UNSORTED $w m=1.5 threads=1"; UNSORTED=1 /tmp/pb_$tree $w 1.5 1 3 | grep -E " fill"; done
 done; done > $OUT/phases_host16.txt 2>&1
 for round in 1 2; do for tree in new old; do
-  bin=$BUILD/bin; [ $tree = old ] && bin=.deps/old-src/build-host/bin
+  bin=$BUILD/bin; [ $tree = old ] && bin=$OLD_BIN
   timeout 100 $bin/horizon_bench --sizes 100 --reps 3 --shuffled --cloud-points 1000000 > $OUT/host16_bench_${tree}_$round.csv 2>&1
 done; done
 grep -E "^(lattice|lattice-shuffled|random).*(serial|openmp),sorted" $OUT/host16_bench_*.csv | cut -c1-200
