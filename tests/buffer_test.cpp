@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <vector>
 
 namespace horizon {
 namespace {
@@ -65,6 +66,38 @@ TEST(Buffer, ReusesAFreedWorkingArrayForTheNextSearchsArrays) {
   EXPECT_LT(detail::cached_buffer_bytes(), 18 * mib);
   release_cached_buffers();
   EXPECT_EQ(detail::cached_buffer_bytes(), 0u);
+}
+
+std::vector<void*> released_blocks;
+
+TEST(Buffer, TellsTheReleaseHookOfEveryBlockGivenBack) {
+  release_cached_buffers();  // blocks of earlier tests go to the hook they were kept under
+  const detail::BlockReleaseHook before = detail::set_block_release_hook([](void* b) { released_blocks.push_back(b); });
+  released_blocks.clear();
+  void* first = nullptr;
+  void* second = nullptr;
+  {
+    Buffer<std::int32_t> list(64 * mib / sizeof(std::int32_t));
+    first = list.data();
+  }
+  EXPECT_TRUE(released_blocks.empty());  // held by the pool, not given back
+  {
+    Buffer<std::int32_t> shorter(33 * mib / sizeof(std::int32_t));  // under half of the held block: it is freed
+    second = shorter.data();
+    ASSERT_EQ(released_blocks.size(), 1u);
+    EXPECT_EQ(released_blocks[0], first);
+  }
+  {
+    Buffer<std::int32_t> longer(64 * mib / sizeof(std::int32_t));  // the held one is too small: freed
+    first = longer.data();
+    ScratchBuffer<char> tiny(1000);  // below 1 MB: never told
+  }
+  ASSERT_EQ(released_blocks.size(), 2u);
+  EXPECT_EQ(released_blocks[1], second);
+  release_cached_buffers();
+  ASSERT_EQ(released_blocks.size(), 3u);
+  EXPECT_EQ(released_blocks[2], first);
+  detail::set_block_release_hook(before);
 }
 
 }  // namespace

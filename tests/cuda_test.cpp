@@ -12,6 +12,7 @@
 
 #include "datasets.hpp"
 #include "same_families.hpp"
+#include "horizon/buffer.hpp"
 #include "horizon/cuda.hpp"
 #include "horizon/device_verlet_list.hpp"
 #include "horizon/generate.hpp"
@@ -182,6 +183,23 @@ TEST(Cuda, QueriesMatchTheCpu) {
   SearchOptions cuda = options_for(0.5, Backend::cuda), cpu = options_for(0.5, Backend::serial);
   cuda.queries = cpu.queries = 12345;
   EXPECT_EQ(search(points.view(), cuda), search(points.view(), cpu));
+}
+
+TEST(Cuda, RepeatedHostSearchesMatchWhenTheirListsArePageLocked) {
+  REQUIRE_GPU();
+  // A 71 MB list: the first call copies it through staging into a fresh block, the second
+  // page-locks that block (handed back by the pool) and the third copies into it by DMA alone;
+  // likewise in batches. Freeing the pool unregisters the blocks.
+  const PointSet points = lattice(100);
+  const NeighborList expected = search(points.view(), options_for(0.15, Backend::openmp));
+  for (const std::int64_t batch : {std::int64_t{0}, std::int64_t{3000000}}) {
+    release_cached_buffers();
+    SearchOptions options = options_for(0.15, Backend::cuda);
+    options.gpu_batch_entries = batch;
+    for (int call = 0; call < 3; ++call) EXPECT_EQ(search(points.view(), options), expected) << batch << " " << call;
+  }
+  release_cached_buffers();
+  EXPECT_EQ(search(points.view(), options_for(0.15, Backend::cuda)), expected);
 }
 
 TEST(Cuda, LatticeMatchesClosedFormAtScale) {

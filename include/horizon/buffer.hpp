@@ -25,6 +25,10 @@ void release_large(void* pointer, std::size_t bytes) noexcept;
 void* allocate_scratch(std::size_t bytes);
 void release_scratch(void* pointer) noexcept;
 std::size_t cached_buffer_bytes();  // held by both pools now
+// Called with each block of 1 MB or more just before it goes back to the system (the CUDA
+// backend unregisters the blocks it page-locked). One hook; returns the one it replaces.
+using BlockReleaseHook = void (*)(void* block);
+BlockReleaseHook set_block_release_hook(BlockReleaseHook hook);
 }  // namespace detail
 
 /// Allocates through the pool of lists when `List`, else through the pool of working arrays.

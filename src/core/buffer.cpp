@@ -1,6 +1,7 @@
 #include "horizon/buffer.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <mutex>
 #include <utility>
 
@@ -59,6 +60,15 @@ Pool& scratch_pool() {
   return *pool;
 }
 
+std::atomic<BlockReleaseHook> release_hook{nullptr};
+
+/// Gives a block back to the system, telling the hook first.
+void free_block(void* pointer) noexcept {
+  if (!pointer) return;
+  if (auto* hook = release_hook.load(); hook && malloc_usable_size(pointer) >= scratch_pool().min_bytes) hook(pointer);
+  std::free(pointer);
+}
+
 std::size_t held_limit(const Pool& pool) {
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
   if (pages <= 0 || page <= 0) return 0;
@@ -79,7 +89,7 @@ void empty(Pool& pool) {
     std::lock_guard lock(pool.mutex);
     std::swap(stale, pool.block);
   }
-  for (Block& b : stale) std::free(b.pointer);
+  for (Block& b : stale) free_block(b.pointer);
 }
 
 /// A held block that fits, or a fresh one 1/16 larger than asked (address space only: untouched
@@ -108,7 +118,7 @@ void* take(Pool& pool, std::size_t bytes, bool free_on_miss) {
 /// Keeps `pointer` in place of the smallest block held, if it is larger and within the limit.
 void give(Pool& pool, void* pointer) noexcept {
   const std::size_t bytes = pointer ? malloc_usable_size(pointer) : 0;  // a padded or reused block is larger than asked
-  if (!pointer || bytes < pool.min_bytes) return std::free(pointer);
+  if (!pointer || bytes < pool.min_bytes) return free_block(pointer);
   {
     std::lock_guard lock(pool.mutex);
     std::size_t held = 0;
@@ -121,7 +131,7 @@ void give(Pool& pool, void* pointer) noexcept {
     if (bytes > smallest->bytes && held - smallest->bytes + bytes <= held_limit(pool))
       pointer = std::exchange(*smallest, Block{pointer, bytes}).pointer;
   }
-  std::free(pointer);
+  free_block(pointer);
 }
 
 std::size_t held_bytes(Pool& pool) {
@@ -144,6 +154,8 @@ void release_large(void* pointer, std::size_t) noexcept {
 }
 void* allocate_scratch(std::size_t bytes) { return take(scratch_pool(), bytes, false); }
 void release_scratch(void* pointer) noexcept { give(scratch_pool(), pointer); }
+
+BlockReleaseHook set_block_release_hook(BlockReleaseHook hook) { return release_hook.exchange(hook); }
 
 std::size_t cached_buffer_bytes() { return held_bytes(list_pool()) + held_bytes(scratch_pool()); }
 

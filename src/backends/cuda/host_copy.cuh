@@ -14,6 +14,7 @@
 
 #include "../../core/parallel_copy.hpp"
 #include "device_memory.hpp"
+#include "pinned_blocks.cuh"
 #include "staging_chunks.hpp"
 
 namespace horizon::detail {
@@ -102,6 +103,23 @@ struct Written {
 void copy_to_host(void* host, const void* device, std::size_t bytes, cudaStream_t stream,
                   std::span<const Written> written = {}) {
   if (bytes == 0) return;
+  if (PinnedBlocks::get().pinned(host, bytes)) {  // page-locked: by DMA alone, a copy per written part
+    std::size_t at = 0;
+    for (const Written& w : written) {
+      if (at >= bytes) break;
+      HORIZON_CUDA_CHECK(cudaStreamWaitEvent(stream, w.event, 0));
+      const std::size_t end = std::min(w.bytes, bytes);
+      if (end <= at) continue;
+      HORIZON_CUDA_CHECK(cudaMemcpyAsync(static_cast<char*>(host) + at, static_cast<const char*>(device) + at,
+                                         end - at, cudaMemcpyDeviceToHost, stream));
+      at = end;
+    }
+    if (at < bytes)
+      HORIZON_CUDA_CHECK(cudaMemcpyAsync(static_cast<char*>(host) + at, static_cast<const char*>(device) + at,
+                                         bytes - at, cudaMemcpyDeviceToHost, stream));
+    HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
+    return;
+  }
   constexpr std::size_t touch_step = std::size_t{32} << 20;
   auto* to = static_cast<char*>(host);
   std::size_t touched = 0;  // [0, touched) is faulted in or already copied: never touched again

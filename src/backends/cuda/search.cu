@@ -452,6 +452,8 @@ NeighborList search_cuda(PointView points, const SearchOptions& options, SearchS
   advise_huge_pages(host_offsets.data(), counts.offsets.bytes());
   Buffer<point_id> indices(static_cast<std::size_t>(counts.total));
   advise_huge_pages(indices.data(), indices.size() * sizeof(point_id));
+  PinnedBlocks::get().prepare(host_offsets.data());
+  PinnedBlocks::get().prepare(indices.data());
 
   // Batches of rows sized to what is free: the list (twice when rows need the segmented sort).
   const std::size_t available = available_device_bytes(meter);
@@ -544,6 +546,8 @@ NeighborList DeviceNeighborList::to_host(bool half) const {
   Buffer<std::int64_t> offsets(points_ + 1, 0);
   Buffer<point_id> indices(static_cast<std::size_t>(total_));
   detail::advise_huge_pages(indices.data(), indices.size() * sizeof(point_id));
+  detail::PinnedBlocks::get().prepare(offsets.data());
+  detail::PinnedBlocks::get().prepare(indices.data());
   if (offsets_) detail::copy_to_host(offsets.data(), offsets_.get(), offsets.size() * sizeof(std::int64_t), stream_);
   if (total_) detail::copy_to_host(indices.data(), indices_.get(), indices.size() * sizeof(point_id), stream_);
   return NeighborList(std::move(offsets), std::move(indices), half);
