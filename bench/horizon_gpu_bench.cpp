@@ -177,9 +177,14 @@ int main(int argc, char** argv) {
       SearchStats stats;
       Stopwatch clock;
       const NeighborList list = search(p.points.view(), options, &stats);
-      if (r == 0) host_first = clock.lap();
-      else host_runs.emplace_back(clock.lap(), stats);
-      if (r == 1) host_second = host_runs.back().first;
+      const double call = clock.lap();
+      if (r == 0) host_first = call;
+      else host_runs.emplace_back(call, stats);
+      if (r == 1) host_second = call;
+      // Every call's phases, for the outliers a median hides.
+      std::fprintf(stderr, "host %s %d m=%g call %d: %.1f ms (h2d %.1f, grid %.1f, kernels %.1f, d2h %.1f)\n",
+                   p.name.c_str(), p.n, p.m, r, call * 1e3, stats.host_to_device_seconds * 1e3,
+                   stats.grid_seconds * 1e3, stats.kernel_seconds * 1e3, stats.device_to_host_seconds * 1e3);
       neighbors = list.total();
       peak = std::max(peak, stats.peak_gpu_bytes);
     }
