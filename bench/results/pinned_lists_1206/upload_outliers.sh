@@ -11,4 +11,15 @@ for run in 1 2 3; do
   timeout 150 $BUILD/bin/horizon_gpu_bench --sizes 200,400 --cloud-points 0 --reps 5 > $OUT/run_$run.csv 2> $OUT/run_$run.err
 done
 echo "after: $(grep -E '^(thp_fault_alloc|thp_fault_fallback|compact_stall|compact_fail|thp_collapse_alloc) ' /proc/vmstat | tr '\n' ' ')" >> $OUT/vmstat.txt
-grep -h "call" $OUT/run_*.err | awk '{ if ($0 ~ /h2d/) print }' | sort -t'(' -k2 | tail -5
+python3 - $OUT <<'PY2'  # the calls whose upload took over twice the problem's fastest
+import glob, re, sys, collections
+calls = collections.defaultdict(list)
+for f in sorted(glob.glob(sys.argv[1] + '/run_*.err')):
+    for line in open(f):
+        if m := re.match(r'host (\S+ \d+ m=\S+) call (\d+): (\S+) ms \(h2d (\S+),', line):
+            calls[m[1]].append((f[-5], int(m[2]), float(m[3]), float(m[4])))
+for problem, c in calls.items():
+    fastest = min(h for *_, h in c)
+    slow = [f"run {r} call {k}: {t} ms, h2d {h}" for r, k, t, h in c if h > 2 * fastest]
+    print(f"{problem}: fastest h2d {fastest} ms; {len(slow)} of {len(c)} calls slower than twice that", *slow, sep="\n  ")
+PY2
