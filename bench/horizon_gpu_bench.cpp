@@ -5,7 +5,7 @@
 // host->host time (a first call into fresh memory, the second call, which page-locks the
 // pool's blocks, and the median of repeats), the same list from openmp on all CPU cores (the thesis's relative
 // throughput, Fig. 5.1), and the floors measured in the same run: PCIe copies of points in and
-// list out, and the device write of the list. Prints CSV.
+// list out, and the device write of the list. Prints CSV (each host call's phases on stderr).
 #include <CLI/CLI.hpp>
 #include <cuda_runtime.h>
 #include <omp.h>
