@@ -7,14 +7,15 @@
 /// are kept for the next lists of about their size, and the largest working arrays (1 MB or
 /// more, up to 16 of them and an eighth of the memory) for the next search's, so a search
 /// repeated every time step does not fault its pages in again; release_cached_buffers() gives
-/// them back.
+/// them back. The CUDA host path page-locks a kept list block the second time it receives a list
+/// (then copied into by DMA alone); such a block stays locked until it is given back.
 #include <cstdlib>
 #include <new>
 #include <vector>
 
 namespace horizon {
 
-/// Frees the blocks kept for the next searches, if any.
+/// Frees the blocks kept for the next searches, if any (unlocking those the CUDA host path locked).
 void release_cached_buffers();
 
 namespace detail {
