@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Next device call (not run yet): this tree (the page-locked list blocks registered in pieces of
+# Device call of 2026-12-06 (results beside it, README.md): this tree (the page-locked list blocks registered in pieces of
 # 256 MB or more, one thread each: src/backends/cuda/pinned_blocks.cuh) against .deps/old-src
 # (main, one cudaHostRegister per block). Answers two questions in one call:
 #  - does registering in parallel cut the second call's price (about twice a repeated call on
@@ -7,9 +7,9 @@
 #  - where do the slow uploads come from (h2d 95 and 156 ms against 5.5 and 35 ms, 2 of 30
 #    problem runs with page-locked blocks)? Every host call's phases, per tree, and the kernel's
 #    THP and compaction counters before and after.
-# Usage: on main, `git apply bench/results/parallel_register_next/parallel_register.patch` (the change,
+# Usage: on main, `git apply bench/results/parallel_register_1206/parallel_register.patch` (the change,
 # kept off main until it runs on a GPU), `.deps/old-src` = main unpacked; then on the device (carry [".deps"]):
-#   bash bench/results/parallel_register_next/run_on_device.sh
+#   bash bench/results/parallel_register_1206/run_on_device.sh
 grep -E '^(thp_fault_alloc|thp_fault_fallback|compact_stall|compact_fail|thp_migration_success|pgmigrate_success) ' /proc/vmstat > /tmp/vmstat_before
 ROUNDS=${ROUNDS:-2} SIZES=${SIZES:-200,400} CLOUD=0 TESTS="cuda|Cuda|Buffer" source bench/gpu/device_host_path_ab.sh
 { echo "# before"; cat /tmp/vmstat_before; echo "# after"
