@@ -50,12 +50,17 @@ static Cells bin(int n, double spacing, double h) {
 }
 
 // Hits of point p (coordinates px, py, pz) among sorted positions [b, e): a bit per candidate.
+struct Soa {  // the sorted arrays as plain pointers, so that loops hold them in registers
+  const double *x, *y, *z;
+  const std::int32_t* id;
+};
+
 template <class F>
-static inline void test_run(const Cells& c, __m512d px, __m512d py, __m512d pz, __m512d h2, std::int64_t b,
+static inline void test_run(const Soa& c, __m512d px, __m512d py, __m512d pz, __m512d h2, std::int64_t b,
                             std::int64_t e, F&& on_hits) {
   for (std::int64_t q = b; q < e; q += 8) {
-    const __m512d dx = _mm512_sub_pd(px, _mm512_loadu_pd(&c.x[q])), dy = _mm512_sub_pd(py, _mm512_loadu_pd(&c.y[q])),
-                  dz = _mm512_sub_pd(pz, _mm512_loadu_pd(&c.z[q]));
+    const __m512d dx = _mm512_sub_pd(px, _mm512_loadu_pd(c.x + q)), dy = _mm512_sub_pd(py, _mm512_loadu_pd(c.y + q)),
+                  dz = _mm512_sub_pd(pz, _mm512_loadu_pd(c.z + q));
     const __m512d d2 = _mm512_fmadd_pd(dz, dz, _mm512_fmadd_pd(dy, dy, _mm512_mul_pd(dx, dx)));
     __mmask8 hit = _mm512_cmp_pd_mask(d2, h2, _CMP_LT_OQ);
     if (e - q < 8) hit &= static_cast<__mmask8>((1u << (e - q)) - 1);
@@ -68,7 +73,9 @@ int main(int argc, char** argv) {
   const double m = argc > 2 ? std::atof(argv[2]) : 1.5;
   const int reps = argc > 3 ? std::atoi(argv[3]) : 7;
   const double spacing = 0.1, h = m * spacing;
-  const Cells c = bin(n, spacing, h);
+  const Cells cells = bin(n, spacing, h);
+  const Cells& c = cells;
+  const Soa soa{cells.x.data(), cells.y.data(), cells.z.data(), cells.id.data()};
   const std::int64_t N = static_cast<std::int64_t>(n) * n * n;
   const __m512d h2 = _mm512_set1_pd(h * h);
 
@@ -109,7 +116,7 @@ int main(int argc, char** argv) {
       const __m512d px = _mm512_set1_pd(c.x[p]), py = _mm512_set1_pd(c.y[p]), pz = _mm512_set1_pd(c.z[p]);
       std::int64_t found = -1;  // itself
       for (int k = 0; k < runs; ++k)
-        test_run(c, px, py, pz, h2, r[2 * k], r[2 * k + 1],
+        test_run(soa, px, py, pz, h2, r[2 * k], r[2 * k + 1],
                  [&](std::int64_t, __mmask8 hit) { found += __builtin_popcount(hit); });
       offsets[p + 1] = found;
     }
@@ -118,26 +125,26 @@ int main(int argc, char** argv) {
   std::vector<std::int32_t> full(offsets[N] + 16), mirror(offsets[N] + 16);
   std::vector<std::int64_t> cursor(N);
 
-  auto fill_full = [&]() __attribute__((noinline)) {
+  // The full-stencil fill into `rows`; `pack(hit, ids, out)` stores the hit lanes of ids at out.
+  auto fill_full_stencil = [&](std::vector<std::int32_t>& rows, auto pack) {
     each_point([&](int cx, int cy, int cz, std::int64_t b, std::int64_t e) {
       std::int64_t r[18];
       const int runs = full_runs(cx, cy, cz, r);
       for (std::int64_t p = b; p < e; ++p) {
         const __m512d px = _mm512_set1_pd(c.x[p]), py = _mm512_set1_pd(c.y[p]), pz = _mm512_set1_pd(c.z[p]);
         const __m256i self = _mm256_set1_epi32(c.id[p]);
-        std::int32_t* out = &full[offsets[p]];
+        std::int32_t* out = &rows[offsets[p]];
         for (int k = 0; k < runs; ++k)
-          test_run(c, px, py, pz, h2, r[2 * k], r[2 * k + 1], [&](std::int64_t q, __mmask8 hit) {
-            const __m256i ids = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&c.id[q]));
+          test_run(soa, px, py, pz, h2, r[2 * k], r[2 * k + 1], [&](std::int64_t q, __mmask8 hit) {
+            const __m256i ids = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(soa.id + q));
             hit &= _mm256_cmpneq_epi32_mask(ids, self);
-            _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), _mm256_maskz_compress_epi32(hit, ids));
+            pack(hit, ids, out);
             out += __builtin_popcount(hit);
           });
       }
     });
   };
-  // The same full-stencil fill, the hits packed by a permute from a table of 256 index vectors
-  // instead of the register compress.
+  // Hits packed by the register compress, or by a permute with indices from a table of 256.
   static const auto table = [] {
     std::vector<std::int32_t> t(256 * 8);
     for (int mask = 0; mask < 256; ++mask) {
@@ -149,23 +156,15 @@ int main(int argc, char** argv) {
     return t;
   }();
   std::vector<std::int32_t> permuted(offsets[N] + 16);
+  auto fill_full = [&]() __attribute__((noinline)) {
+    fill_full_stencil(full, [](__mmask8 hit, __m256i ids, std::int32_t* out) {
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), _mm256_maskz_compress_epi32(hit, ids));
+    });
+  };
   auto fill_permute = [&]() __attribute__((noinline)) {
-    each_point([&](int cx, int cy, int cz, std::int64_t b, std::int64_t e) {
-      std::int64_t r[18];
-      const int runs = full_runs(cx, cy, cz, r);
-      for (std::int64_t p = b; p < e; ++p) {
-        const __m512d px = _mm512_set1_pd(c.x[p]), py = _mm512_set1_pd(c.y[p]), pz = _mm512_set1_pd(c.z[p]);
-        const __m256i self = _mm256_set1_epi32(c.id[p]);
-        std::int32_t* out = &permuted[offsets[p]];
-        for (int k = 0; k < runs; ++k)
-          test_run(c, px, py, pz, h2, r[2 * k], r[2 * k + 1], [&](std::int64_t q, __mmask8 hit) {
-            const __m256i ids = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&c.id[q]));
-            hit &= _mm256_cmpneq_epi32_mask(ids, self);
-            const __m256i index = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&table[hit * 8]));
-            _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), _mm256_permutevar8x32_epi32(ids, index));
-            out += __builtin_popcount(hit);
-          });
-      }
+    fill_full_stencil(permuted, [](__mmask8 hit, __m256i ids, std::int32_t* out) {
+      const __m256i index = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&table[hit * 8]));
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), _mm256_permutevar8x32_epi32(ids, index));
     });
   };
   auto fill_mirror = [&]() __attribute__((noinline)) {
@@ -179,9 +178,9 @@ int main(int argc, char** argv) {
         std::int32_t* out = &mirror[cursor[p]];
         r[0] = p + 1;
         for (int k = 0; k < runs; ++k)
-          test_run(c, px, py, pz, h2, r[2 * k], r[2 * k + 1], [&](std::int64_t q, __mmask8 hit) {
+          test_run(soa, px, py, pz, h2, r[2 * k], r[2 * k + 1], [&](std::int64_t q, __mmask8 hit) {
             // A masked store: a plain one would run into the next row, which may hold hits already.
-            const __m256i ids = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&c.id[q]));
+            const __m256i ids = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(soa.id + q));
             const int hits = __builtin_popcount(hit);
             _mm256_mask_storeu_epi32(out, static_cast<__mmask8>((1u << hits) - 1), _mm256_maskz_compress_epi32(hit, ids));
             out += hits;
