@@ -105,18 +105,17 @@ void copy_to_host(void* host, const void* device, std::size_t bytes, cudaStream_
   if (bytes == 0) return;
   if (PinnedBlocks::get().pinned(host, bytes)) {  // page-locked: by DMA alone, a copy per written part
     std::size_t at = 0;
-    for (const Written& w : written) {
-      if (at >= bytes) break;
-      HORIZON_CUDA_CHECK(cudaStreamWaitEvent(stream, w.event, 0));
-      const std::size_t end = std::min(w.bytes, bytes);
-      if (end <= at) continue;
+    auto copy_up_to = [&](std::size_t end) {
       HORIZON_CUDA_CHECK(cudaMemcpyAsync(static_cast<char*>(host) + at, static_cast<const char*>(device) + at,
                                          end - at, cudaMemcpyDeviceToHost, stream));
       at = end;
+    };
+    for (const Written& w : written) {
+      if (at >= bytes) break;
+      HORIZON_CUDA_CHECK(cudaStreamWaitEvent(stream, w.event, 0));
+      if (std::min(w.bytes, bytes) > at) copy_up_to(std::min(w.bytes, bytes));
     }
-    if (at < bytes)
-      HORIZON_CUDA_CHECK(cudaMemcpyAsync(static_cast<char*>(host) + at, static_cast<const char*>(device) + at,
-                                         bytes - at, cudaMemcpyDeviceToHost, stream));
+    if (at < bytes) copy_up_to(bytes);
     HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
     return;
   }
