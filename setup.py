@@ -3,6 +3,7 @@
 HORIZON_CMAKE_ARGS adds configure arguments (e.g. "-DHORIZON_CUDA=off")."""
 import glob
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -11,6 +12,12 @@ from setuptools import Extension, setup
 from setuptools.command.build_ext import build_ext
 
 ROOT = os.path.dirname(os.path.abspath(__file__))
+
+
+def cmake_version():
+    """The version in CMakeLists.txt's project(horizon VERSION ...): the one place it is set."""
+    with open(os.path.join(ROOT, "CMakeLists.txt")) as cmake:
+        return re.search(r"project\(horizon VERSION ([0-9.]+)", cmake.read()).group(1)
 
 
 class CMakeExtension(Extension):
@@ -31,5 +38,5 @@ class CMakeBuild(build_ext):
         shutil.copyfile(built, target)
 
 
-setup(packages=["horizon"], package_dir={"": "python"}, ext_modules=[CMakeExtension("horizon._horizon")],
+setup(version=cmake_version(), packages=["horizon"], package_dir={"": "python"}, ext_modules=[CMakeExtension("horizon._horizon")],
       cmdclass={"build_ext": CMakeBuild})

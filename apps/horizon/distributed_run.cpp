@@ -16,6 +16,7 @@
 #include "horizon/error.hpp"
 #include "horizon/io.hpp"
 #include "horizon/stopwatch.hpp"
+#include "horizon/version.hpp"
 
 namespace horizon::cli {
 
@@ -165,6 +166,7 @@ void run_distributed(const SearchArgs& args) {
   const double build = stats.preprocess + stats.decompose + stats.communicate + stats.search;
   if (args.json) {
     nlohmann::json report = {
+        {"version", version()},
         {"points", n}, {"dims", all.dims}, {"horizon", args.horizon}, {"metric", args.metric},
         {"cells_per_horizon", args.cells_per_horizon}, {"half", args.half}, {"neighbors", total},
         {"backend", args.backend}, {"threads", args.threads}, {"ranks", size},

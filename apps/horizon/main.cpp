@@ -13,6 +13,7 @@
 #include "horizon/error.hpp"
 #include "horizon/generate.hpp"
 #include "horizon/io.hpp"
+#include "horizon/version.hpp"
 
 namespace horizon::cli {
 
@@ -78,6 +79,7 @@ struct MpiSession {
 int main(int argc, char** argv) {
   MpiSession mpi(argc, argv);
   CLI::App app{"horizon: all-pairs fixed-radius neighbour lists (cell lists, CPU and GPU)"};
+  app.set_version_flag("--version", std::string("horizon ") + horizon::version());
   app.require_subcommand(1);
   horizon::cli::add_generate(app);
   horizon::cli::add_search(app);
@@ -87,6 +89,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     app.exit(e);

@@ -15,6 +15,7 @@
 #include "horizon/radii.hpp"
 #include "horizon/search.hpp"
 #include "horizon/stopwatch.hpp"
+#include "horizon/version.hpp"
 
 namespace horizon::cli {
 
@@ -108,6 +109,7 @@ void run_search(const SearchArgs& args) {
 
   if (args.json) {
     nlohmann::json report = {
+        {"version", version()},
         {"points", points.size()},
         {"dims", points.dims},
         {"references", references.size()},

@@ -18,7 +18,9 @@ import numpy as np
 
 from . import _horizon
 
-__all__ = ["search", "NeighborList", "DeviceNeighborList", "VerletList", "load", "lattice", "random_cloud", "clustered_cloud", "backend_available"]
+__version__ = _horizon.__version__  # the C++ library's, set by CMake's project(VERSION)
+
+__all__ = ["__version__", "search", "NeighborList", "DeviceNeighborList", "VerletList", "load", "lattice", "random_cloud", "clustered_cloud", "backend_available"]
 
 
 class NeighborList:

@@ -22,6 +22,7 @@
 #include "horizon/radii.hpp"
 #include "horizon/search.hpp"
 #include "horizon/verlet_list.hpp"
+#include "horizon/version.hpp"
 
 namespace py = pybind11;
 
@@ -181,6 +182,7 @@ py::array to_array(const horizon::PointSet& points) {
 
 PYBIND11_MODULE(_horizon, m) {
   m.doc() = "horizon's compiled core; use the horizon package";
+  m.attr("__version__") = horizon::version();
   py::register_exception_translator([](std::exception_ptr error) {
     try {
       if (error) std::rethrow_exception(error);
