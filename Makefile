@@ -1,14 +1,19 @@
 # Quick start on a fresh Debian 12 machine (as root):
 #   make run    installs missing packages, builds, searches the 10^6-point lattice at m = 3.015
-#   make test   builds and runs every test, then the CPU suite again under ASan + UBSan
+#   make test   builds and runs every test and the docs' snippets, builds the docs, then the CPU
+#               suite again under ASan + UBSan
+# Also: make docs (build/docs/html), make package (build/horizon_VERSION_amd64.deb),
+#       make wheel (build/wheel/), make bench, make fuzz, make device-deps.
 BUILD ?= build
 JOBS ?= $(shell nproc)
+PYTHON ?= /usr/bin/python3  # Debian's, with Debian's Sphinx, pybind11 and NumPy
 PACKAGES = build-essential cmake libgtest-dev libbenchmark-dev libcli11-dev libfmt-dev \
            nlohmann-json3-dev libnanoflann-dev libhwy-dev libopenmpi-dev openmpi-bin \
            python3-dev python3-pybind11 pybind11-dev python3-numpy python3-scipy python3-pytest \
-           python3-venv python3-pip python3-matplotlib python3-meshio
+           python3-venv python3-pip python3-matplotlib python3-meshio \
+           doxygen python3-sphinx furo python3-myst-parser python3-breathe
 
-.PHONY: deps build run test test-sanitize fuzz bench clean
+.PHONY: deps build run test test-sanitize docs package wheel device-deps fuzz bench clean
 
 deps:
 	@missing=$$(for p in $(PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || echo $$p; done); \
@@ -28,7 +33,33 @@ run: build
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+	$(MAKE) docs
 	$(MAKE) test-sanitize
+
+# The documentation site: Doxygen XML of the public headers, then Sphinx (MyST pages, Breathe,
+# autodoc of the built Python package), warnings as errors and every internal reference checked.
+docs: build
+	rm -rf $(BUILD)/docs
+	mkdir -p $(BUILD)/docs
+	sed 's|build/|$(BUILD)/|g' docs/Doxyfile | doxygen -
+	HORIZON_DOXYGEN_XML=$(abspath $(BUILD))/docs/doxygen/xml PYTHONPATH=$(BUILD)/python \
+	  $(PYTHON) -m sphinx -W -n --keep-going -q -b html docs $(BUILD)/docs/html
+	@echo "docs: $(BUILD)/docs/html/index.html"
+
+# Debian package of the library, headers, CMake package and CLI.
+package: build
+	cd $(BUILD) && cpack -G DEB
+	@ls $(BUILD)/horizon_*.deb
+
+# A Python wheel built with Debian's pybind11 and NumPy (no download), the CUDA module included
+# when nvcc is found.
+wheel: deps
+	$(PYTHON) -m pip wheel --no-build-isolation --no-deps -w $(BUILD)/wheel .
+	@ls $(BUILD)/wheel/horizon-*.whl
+
+# Debian packages the GPU machine's image lacks, for bench/device/build.sh (carry .deps).
+device-deps:
+	mkdir -p .deps && cd .deps && apt-get download libhwy-dev libhwy1 libnanoflann-dev
 
 # The CPU suite (and the MPI tests) built with AddressSanitizer and UndefinedBehaviorSanitizer
 # (not the installed-package consumer, which links without them). The MPI tests run without leak

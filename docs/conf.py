@@ -21,6 +21,7 @@ exclude_patterns = ["_build"]
 breathe_projects = {"horizon": os.environ.get("HORIZON_DOXYGEN_XML", os.path.join(ROOT, "build", "docs", "doxygen", "xml"))}
 breathe_default_project = "horizon"
 breathe_default_members = ("members",)
+breathe_show_include = False  # every header is named in the table above
 
 autodoc_member_order = "bysource"
 autodoc_typehints = "none"
@@ -29,7 +30,7 @@ autodoc_typehints = "none"
 # library, NumPy, CUDA and MPI are outside this site.
 nitpicky = True
 nitpick_ignore_regex = [
-    (r"cpp:.*", r"(std|hwy|MPI|cuda|CUstream|cudaStream_t)(::.*)?"),
+    (r"cpp:.*", r"(std|hwy|MPI_\w+|CUstream_st|cudaStream_t)(::.*)?"),
     (r"cpp:.*", r"(size_t|int64_t|int32_t|uint64_t|uint32_t|uint8_t|ptrdiff_t|std::.*)"),
     (r"py:.*", r"(numpy|np|scipy|optional|array-like|array_like|int|float|str|bool|callable)(\..*)?"),
 ]

@@ -2,7 +2,7 @@
 
 A snippet is a line starting with "$ " inside a ```console block of README.md and docs/**/*.md. Each page's
 snippets run in order in a fresh directory (with bench/ linked in, as from the repository root),
-with the build's horizon first on PATH; any non-zero exit fails the test. Snippets that need a
+with the build's horizon, then the interpreter running this script, first on PATH; any non-zero exit fails the test. Snippets that need a
 GPU (--backend cuda, --gpus) run only where the cuda backend is usable, and those under mpirun
 only where MPI was built. Also checks that the CLI reference names every flag the CLI has.
 
@@ -17,7 +17,7 @@ import sys
 
 repo, build, work = (pathlib.Path(p).resolve() for p in sys.argv[1:4])
 cli = build / "bin" / "horizon"
-env = dict(os.environ, PATH=f"{cli.parent}:{os.environ['PATH']}", PYTHONPATH=str(build / "python"),
+env = dict(os.environ, PATH=f"{cli.parent}:{pathlib.Path(sys.executable).parent}:{os.environ['PATH']}", PYTHONPATH=str(build / "python"),
            OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMP_NUM_THREADS="1",
            OMPI_MCA_rmaps_base_oversubscribe="1", OMPI_MCA_btl_vader_single_copy_mechanism="none")
 gpu = subprocess.run([cli, "search", "lattice:2", "--horizon", "1", "--backend", "cuda", "--quiet"],

@@ -141,15 +141,16 @@ std::vector<Case> accepted_cases() {
 
 INSTANTIATE_TEST_SUITE_P(AllBackends, RadiiTest, ::testing::ValuesIn(accepted_cases()), case_name);
 
+std::string query_case_name(const ::testing::TestParamInfo<QueryCase>& info) {
+  const auto [backend, metric, dims] = info.param;
+  return std::string(backend_name(backend)) + "_" + metric_name(metric) + "_" + std::to_string(dims) + "d";
+}
+
 INSTANTIATE_TEST_SUITE_P(AllBackends, RadiiQueryTest,
                          ::testing::Combine(::testing::Values(Backend::serial, Backend::openmp, Backend::cuda),
                                             ::testing::Values(Metric::euclidean, Metric::manhattan, Metric::chebyshev),
                                             ::testing::Values(2, 3)),
-                         [](const ::testing::TestParamInfo<QueryCase>& info) {
-                           const auto [backend, metric, dims] = info.param;
-                           return std::string(backend_name(backend)) + "_" + metric_name(metric) + "_" +
-                                  std::to_string(dims) + "d";
-                         });
+                         query_case_name);
 
 TEST(RadiiThreads, EveryRuleGivesTheSameListOnAnyThreadCount) {
   // The transpose splits the rows into one part per thread: parts of uneven sizes, some empty.

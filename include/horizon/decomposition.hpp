@@ -26,8 +26,10 @@ struct Box {
 /// points near 10^12 carry rounding errors of 10^-4).
 double halo_reach(const Bounds& box, int dims, double horizon);
 
+/// How the distributed layer cuts space among ranks: which rank owns each point.
 class Decomposition {
 public:
+  /// brick: a grid of boxes fitted to the bounds; rcb: recursive coordinate bisection by point count.
   enum class Kind { brick, rcb };
 
   /// `ranks` bricks of a grid px x py x pz fitted to the box's shape (smallest cut area).

@@ -147,7 +147,7 @@ class VerletList:
     """A Verlet list for moving points (MD, SPH): the pairs within horizon + skin, searched once;
     refresh(points) then gives the exact horizon list of new positions from those candidates,
     equal to search(points, horizon, ...) while needs_rebuild(points) is False, i.e. until some
-    point has moved by skin / 2 or more since the build (then build a new VerletList).
+    point has moved by skin / 2 or more since the build (then build a new VerletList)::
 
         verlet = horizon.VerletList(x, horizon=0.3, skin=0.03)
         for step in range(steps):

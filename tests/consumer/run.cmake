@@ -10,6 +10,6 @@ step(${CMAKE_COMMAND} --install ${BUILD} --prefix ${WORK}/prefix)
 # Through the environment: a ';' list in a -D argument would be split into several arguments.
 string(REPLACE ";" ":" search_path "${WORK}/prefix;${PREFIXES}")
 set(ENV{CMAKE_PREFIX_PATH} "${search_path}")
-step(${CMAKE_COMMAND} -S ${SOURCE} -B ${WORK}/build)
+step(${CMAKE_COMMAND} -S ${SOURCE} -B ${WORK}/build -DEXPECTED_VERSION=${VERSION})
 step(${CMAKE_COMMAND} --build ${WORK}/build)
 step(${WORK}/build/consumer)
