@@ -3,11 +3,12 @@
 A snippet is a line starting with "$ " inside a ```console block of README.md and docs/**/*.md. Each page's
 snippets run in order in a fresh directory (with bench/ linked in, as from the repository root),
 with the build's horizon, then the interpreter running this script, first on PATH; any non-zero exit fails the test. Snippets that need a
-GPU (--backend cuda, --gpus) run only where the cuda backend is usable, and those under mpirun
-only where MPI was built. Also checks that the CLI reference names every flag the CLI has.
+GPU (--backend cuda, --gpus) run only where the cuda backend is usable, those under mpirun only
+where MPI was built, and those importing an optional Python package (meshio) only where it is. Also checks that the CLI reference names every flag the CLI has.
 
 Usage: docs_snippets.py REPO BUILD WORKDIR
 """
+import importlib.util
 import os
 import pathlib
 import re
@@ -32,6 +33,14 @@ def snippets(page):
     return [line[2:] for block in blocks for line in block.splitlines() if line.startswith("$ ")]
 
 
+def missing_module(command):
+    """The first module a `python3 -c` snippet imports that this interpreter lacks, or None."""
+    for name in re.findall(r"\bimport (\w+)", command) if command.startswith("python3") else []:
+        if importlib.util.find_spec(name) is None:
+            return name
+    return None
+
+
 failures, ran, skipped = [], 0, 0
 for page in [repo / "README.md", *sorted((repo / "docs").rglob("*.md"))]:
     commands = snippets(page)
@@ -42,8 +51,10 @@ for page in [repo / "README.md", *sorted((repo / "docs").rglob("*.md"))]:
     directory.mkdir(parents=True)
     (directory / "bench").symlink_to(repo / "bench")
     for command in commands:
-        if (not gpu and re.search(r"--backend cuda|--gpus", command)) or (not mpi and command.startswith("mpirun")):
-            print(f"skipped (no {'GPU' if 'mpirun' not in command else 'MPI'}): {page.name}: $ {command}")
+        lacking = ("a GPU" if not gpu and re.search(r"--backend cuda|--gpus", command) else
+                   "MPI" if not mpi and command.startswith("mpirun") else missing_module(command))
+        if lacking:
+            print(f"skipped (no {lacking} here): {page.name}: $ {command}")
             skipped += 1
             continue
         result = subprocess.run(command, shell=True, cwd=directory, env=env, capture_output=True, text=True)
