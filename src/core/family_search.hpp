@@ -4,6 +4,18 @@
 // means no buffer grows, nothing is copied, nothing is capped, and the list's pages are touched
 // once (a one-pass variant that stored rows and copied them spent more in page faults than the
 // count pass costs).
+//
+// Count: for one point set and one horizon each pair is tested once (a point against the points
+// after it in its cell and the cell's upper half stencil, a hit counting for both). Threads count
+// slabs of whole cell layers (at least k each), cut into bands of lines when a thread would get
+// fewer than 8 slabs, in four colours by the parities of slab and band, one colour after another,
+// so no two threads write the same counts. Query subsets and per-point radii count each row over
+// the stencil cells it reaches. Fill: a cell's points are tested in tiles of 4, 2 or 1 against each
+// vector of candidates (a candidate loaded once per tile); found rows wait in a ring of buffers
+// (32 KB) and are sorted or copied to their places when it is full, so stores to random places
+// (input in no spatial order) do not stall the tests. Rows that fit the sorting network
+// (sort_network-inl.h: 128 ids with AVX-512, 64 with AVX2) are sorted in registers; a cell with a
+// large stencil and longer rows scans its stencil sorted by id once (sorted_stencil.hpp).
 #include <array>
 #include <cstdint>
 #include <functional>
