@@ -11,7 +11,7 @@ PACKAGES = build-essential cmake libgtest-dev libbenchmark-dev libcli11-dev libf
            nlohmann-json3-dev libnanoflann-dev libhwy-dev libopenmpi-dev openmpi-bin \
            python3-dev python3-pybind11 pybind11-dev python3-numpy python3-scipy python3-pytest \
            python3-venv python3-pip python3-matplotlib python3-meshio \
-           doxygen python3-sphinx furo python3-myst-parser python3-breathe
+           doxygen python3-sphinx furo python3-myst-parser python3-breathe gfortran pkg-config
 
 .PHONY: deps build run test test-sanitize docs package wheel device-deps fuzz bench clean
 
@@ -69,7 +69,8 @@ SANITIZE = -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omi
 test-sanitize: deps
 	cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
 	  -DHORIZON_CUDA=off -DHORIZON_PYTHON=off \
-	  -DHORIZON_BENCH=OFF "-DCMAKE_CXX_FLAGS=$(SANITIZE)" "-DCMAKE_EXE_LINKER_FLAGS=$(SANITIZE)"
+	  -DHORIZON_BENCH=OFF "-DCMAKE_CXX_FLAGS=$(SANITIZE)" "-DCMAKE_EXE_LINKER_FLAGS=$(SANITIZE)" \
+	  "-DCMAKE_SHARED_LINKER_FLAGS=$(SANITIZE)"
 	cmake --build build-sanitize -j $(JOBS)
 	cd build-sanitize && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  HORIZON_DIFFERENTIAL_PROBLEMS=300 ctest --output-on-failure -j $(JOBS) -E "mpi|find_package_consumer"
