@@ -73,7 +73,7 @@ test-sanitize: deps
 	  "-DCMAKE_SHARED_LINKER_FLAGS=$(SANITIZE)"
 	cmake --build build-sanitize -j $(JOBS)
 	cd build-sanitize && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
-	  HORIZON_DIFFERENTIAL_PROBLEMS=300 ctest --output-on-failure -j $(JOBS) -E "mpi|find_package_consumer"
+	  HORIZON_DIFFERENTIAL_PROBLEMS=150 ctest --output-on-failure -j $(JOBS) -E "mpi|find_package_consumer"
 	cd build-sanitize && ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  HORIZON_DIFFERENTIAL_PROBLEMS=100 ctest --output-on-failure -j $(JOBS) -R mpi
 

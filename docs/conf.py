@@ -22,6 +22,7 @@ breathe_projects = {"horizon": os.environ.get("HORIZON_DOXYGEN_XML", os.path.joi
 breathe_default_project = "horizon"
 breathe_default_members = ("members",)
 breathe_show_include = False  # every header is named in the table above
+breathe_domain_by_extension = {"h": "c"}  # horizon.h and version.h are C
 
 autodoc_member_order = "bysource"
 autodoc_typehints = "none"
@@ -32,6 +33,7 @@ nitpicky = True
 nitpick_ignore_regex = [
     (r"cpp:.*", r"(std|hwy|MPI_\w+|CUstream_st|cudaStream_t)(::.*)?"),
     (r"cpp:.*", r"(size_t|int64_t|int32_t|uint64_t|uint32_t|uint8_t|ptrdiff_t|std::.*)"),
+    (r"c:.*", r"(size_t|int64_t|int32_t|uint64_t)"),
     (r"py:.*", r"(numpy|np|scipy|optional|array-like|array_like|int|float|str|bool|callable)(\..*)?"),
 ]
 

@@ -2,12 +2,17 @@
 // tested on, and every error path: a status and a message naming the cause, never an exception.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
+
+#if defined(HORIZON_WITH_CUDA)
+#include <cuda_runtime.h>
+#endif
 
 #include "datasets.hpp"
 #include "horizon/block_filter.hpp"
@@ -236,6 +241,38 @@ TEST(CApi, AnOlderCallersSmallerOptionsStructStillWorks) {
   ASSERT_EQ(horizon_search(points.data(), 2, 3, &options, &list), HORIZON_OK) << horizon_last_error();
   EXPECT_EQ(horizon_list_total(list), 2);
   horizon_list_free(list);
+}
+
+TEST(CApi, DeviceSearchLeavesTheListOnTheGpu) {
+  if (!horizon_backend_available(HORIZON_BACKEND_CUDA)) {
+    const char* required = std::getenv("HORIZON_REQUIRE_GPU");
+    if (required && std::string(required) == "1") FAIL() << "HORIZON_REQUIRE_GPU=1 but no usable GPU";
+    GTEST_SKIP() << "no usable GPU";
+  }
+#if defined(HORIZON_WITH_CUDA)
+  const PointSet points = random_cloud(20000, 3, 5);
+  double* device_xyz = nullptr;
+  ASSERT_EQ(cudaMalloc(&device_xyz, points.xyz.size() * sizeof(double)), cudaSuccess);
+  cudaMemcpy(device_xyz, points.xyz.data(), points.xyz.size() * sizeof(double), cudaMemcpyHostToDevice);
+  horizon_options options;
+  horizon_options_default(&options);
+  options.horizon = 0.6;
+  horizon_device_list* list = nullptr;
+  ASSERT_EQ(horizon_search_device(device_xyz, points.size(), 3, &options, nullptr, &list), HORIZON_OK) << horizon_last_error();
+  SearchOptions cpp;
+  cpp.horizon = 0.6;
+  const NeighborList expected = search(points.view(), cpp);
+  ASSERT_EQ(horizon_device_list_size(list), points.size());
+  ASSERT_EQ(horizon_device_list_total(list), expected.total());
+  std::vector<std::int64_t> offsets(points.size() + 1);
+  std::vector<std::int32_t> indices(static_cast<std::size_t>(expected.total()));
+  cudaMemcpy(offsets.data(), horizon_device_list_offsets(list), offsets.size() * sizeof(std::int64_t), cudaMemcpyDeviceToHost);
+  cudaMemcpy(indices.data(), horizon_device_list_indices(list), indices.size() * sizeof(std::int32_t), cudaMemcpyDeviceToHost);
+  EXPECT_TRUE(std::equal(offsets.begin(), offsets.end(), expected.offsets().begin()));
+  EXPECT_TRUE(std::equal(indices.begin(), indices.end(), expected.indices().begin()));
+  horizon_device_list_free(list);
+  cudaFree(device_xyz);
+#endif
 }
 
 }  // namespace

@@ -33,7 +33,7 @@ extern "C" {
 #endif
 
 /** What a call returned. */
-typedef enum horizon_status {
+typedef enum {
   HORIZON_OK = 0,
   HORIZON_INVALID_INPUT = 1,         /**< bad points, radii, options or arguments (NaN, horizon <= 0, NULL, ...) */
   HORIZON_OUT_OF_MEMORY = 2,         /**< an allocation failed */
@@ -43,9 +43,9 @@ typedef enum horizon_status {
   HORIZON_INTERNAL_ERROR = 6         /**< anything else: a bug, please report it with the message */
 } horizon_status;
 
-typedef enum horizon_metric { HORIZON_METRIC_L2 = 0, HORIZON_METRIC_L1 = 1, HORIZON_METRIC_LINF = 2 } horizon_metric;
+typedef enum { HORIZON_METRIC_L2 = 0, HORIZON_METRIC_L1 = 1, HORIZON_METRIC_LINF = 2 } horizon_metric;
 
-typedef enum horizon_backend {
+typedef enum {
   HORIZON_BACKEND_AUTO = 0,
   HORIZON_BACKEND_SERIAL = 1,
   HORIZON_BACKEND_OPENMP = 2,
@@ -53,7 +53,7 @@ typedef enum horizon_backend {
 } horizon_backend;
 
 /** Which radius a pair i-j is tested with when every point has its own (horizon_search_radii). */
-typedef enum horizon_radius_rule {
+typedef enum {
   HORIZON_RADIUS_GATHER = 0,   /**< d < r_i */
   HORIZON_RADIUS_SCATTER = 1,  /**< d < r_j */
   HORIZON_RADIUS_MAX = 2,      /**< d < max(r_i, r_j) */
@@ -63,7 +63,7 @@ typedef enum horizon_radius_rule {
 /** Search options. Fill with horizon_options_default(), then set what you need. `size` comes
  *  first so that later versions can add fields at the end without breaking callers built
  *  against this one: the library reads only the fields that fit in `size` bytes. */
-typedef struct horizon_options {
+typedef struct {
   size_t size;              /**< sizeof(horizon_options), set by horizon_options_default() */
   double horizon;           /**< pairs closer than this (strictly) are neighbours */
   int32_t metric;           /**< horizon_metric (default L2) */
