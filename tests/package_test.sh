@@ -11,7 +11,8 @@ deb="$work/pkg/horizon_${version}_$(dpkg --print-architecture).deb"
 [ "$(dpkg-deb -f "$deb" Version)" = "$version" ] || { echo "package version $(dpkg-deb -f "$deb" Version) != $version"; exit 1; }
 dpkg -x "$deb" "$work/root"
 for f in usr/bin/horizon usr/include/horizon/search.hpp usr/include/horizon/version.hpp \
-         "usr/lib*/cmake/horizon/horizonConfigVersion.cmake" usr/share/doc/horizon/copyright; do
+         "usr/lib*/cmake/horizon/horizonConfigVersion.cmake" "usr/lib*/libhorizon.so.1" "usr/lib*/pkgconfig/horizon.pc" \
+         usr/include/horizon/horizon.h usr/share/doc/horizon/copyright; do
   compgen -G "$work/root/$f" > /dev/null || { echo "missing from the package: /$f"; exit 1; }
 done
 cli="$work/root/usr/bin/horizon"
