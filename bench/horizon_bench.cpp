@@ -20,6 +20,7 @@
 #include "horizon/generate.hpp"
 #include "horizon/search.hpp"
 #include "horizon/stopwatch.hpp"
+#include "latency.hpp"
 #include "textbook_cell_list.hpp"
 
 namespace {
@@ -155,7 +156,15 @@ int main(int argc, char** argv) {
   app.add_option("--cloud-points", cloud_points, "points in the random and clustered clouds (0: none)");
   app.add_flag("--nanoflann,!--no-nanoflann", nanoflann, "also time nanoflann (one core; slow)");
   app.add_flag("--shuffled,!--no-shuffled", shuffle, "also time the largest lattice in random order");
+  bool latency = false;
+  bench::LatencyOptions latency_options;
+  app.add_flag("--latency", latency, "instead: the time of one call at small sizes, idle and beside busy processes");
+  app.add_option("--latency-sizes", latency_options.sizes, "with --latency: points per call")->delimiter(',');
+  app.add_option("--busy", latency_options.busy, "with --latency: busy processes beside the calls (-1: one per hardware thread)")
+      ->delimiter(',');
+  app.add_option("--seconds", latency_options.seconds, "with --latency: seconds of calls per size, backend and load");
   CLI11_PARSE(app, argc, argv);
+  if (latency) return bench::run_latency(latency_options);
   if (threads == 0) threads = omp_get_max_threads();
 
   std::vector<Problem> problems;

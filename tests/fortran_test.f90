@@ -41,6 +41,7 @@ program fortran_test
   call check(ierr == HORIZON_INVALID_INPUT, "backend 9 accepted")
   call check(len(horizon_version_string()) >= 5, "version: " // horizon_version_string())
 
+  deallocate(points)
   if (failures > 0) then
     print '(i0, a)', failures, " failures"
     error stop 1

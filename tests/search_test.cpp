@@ -1,6 +1,7 @@
 // Properties of search() beyond oracle equality: closed-form lattice counts at sizes brute force
 // cannot reach, backend agreement, float32 input, options, and errors.
 #include <gtest/gtest.h>
+#include <sched.h>
 
 #include <algorithm>
 #include <array>
@@ -144,6 +145,48 @@ TEST(Backends, AutoPicksAnAvailableBackend) {
   search(points.view(), options_for(2.5, Backend::automatic), &stats);
   EXPECT_NE(stats.backend, Backend::automatic);
   EXPECT_TRUE(backend_available(stats.backend));
+}
+
+TEST(Backends, AutoSearchesATinyProblemOnOneCore) {
+  if (backend_available(Backend::cuda)) GTEST_SKIP() << "a GPU is usable: auto takes it";
+  SearchStats stats;
+  const PointSet points = random_cloud(100, 3, 4);
+  const NeighborList list = search(points.view(), options_for(2.0, Backend::automatic), &stats);
+  EXPECT_EQ(stats.backend, Backend::serial) << stats.choice;
+  EXPECT_EQ(stats.threads, 1);
+  EXPECT_FALSE(stats.choice.empty());
+  EXPECT_EQ(list, search(points.view(), options_for(2.0, Backend::serial)));
+}
+
+TEST(Backends, ThreadsStayWithinTheCpusOfTheAffinityMask) {
+  cpu_set_t saved, one;
+  ASSERT_EQ(sched_getaffinity(0, sizeof saved, &saved), 0);
+  CPU_ZERO(&one);
+  for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu)
+    if (CPU_ISSET(cpu, &saved)) {
+      CPU_SET(cpu, &one);
+      break;
+    }
+  ASSERT_EQ(sched_setaffinity(0, sizeof one, &one), 0);  // this thread may run on one CPU only
+  const PointSet points = random_cloud(200000, 3, 6);
+  SearchStats openmp, automatic;
+  const NeighborList list = search(points.view(), options_for(0.3, Backend::openmp), &openmp);
+  if (!backend_available(Backend::cuda)) search(points.view(), options_for(0.3, Backend::automatic), &automatic);
+  sched_setaffinity(0, sizeof saved, &saved);
+  EXPECT_EQ(openmp.threads, 1);
+  if (!backend_available(Backend::cuda)) {
+    EXPECT_EQ(automatic.backend, Backend::serial) << automatic.choice;
+    EXPECT_EQ(automatic.threads, 1);
+  }
+  EXPECT_EQ(list, search(points.view(), options_for(0.3, Backend::serial)));
+}
+
+TEST(Backends, WarmUpLeavesEveryBackendReady) {
+  warm_up(Backend::automatic);
+  warm_up(Backend::serial);
+  warm_up(Backend::openmp);
+  if (backend_available(Backend::cuda)) warm_up(Backend::cuda);
+  else EXPECT_THROW(warm_up(Backend::cuda), Error);
 }
 
 TEST(Input, Float32GivesTheSameListAsFloat64OfTheSameValues) {

@@ -119,6 +119,7 @@ void run_search(const SearchArgs& args) {
         {"half", options.half},
         {"neighbors", entries},
         {"backend", backend_name(stats.backend)},
+        {"backend_choice", stats.choice},
         {"threads", stats.threads},
         {"seconds",
          {{"read", read_seconds},

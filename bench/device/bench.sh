@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # On the GPU machine: the benchmarks behind docs/performance (bench/results/h100*/): the GPU
 # benchmark against the naive GPU cell list, then on the host's cores horizon_bench against the
-# textbook cell list, the periodic box's and the radii's costs, all from one CUDA build.
+# textbook cell list, the periodic box's and the radii's costs and the latency of small calls
+# (idle and beside busy processes), all from one CUDA build.
 # Usage: [SIZES=100,200,400] [CLOUD=8000000] [CPU=1] bash bench/device/bench.sh   (writes under $OUT)
 source bench/device/build.sh
 nvidia-smi --query-gpu=name,memory.total,driver_version,clocks.max.sm --format=csv,noheader | tee "$OUT/machine.txt"
@@ -12,4 +13,5 @@ if [ "${CPU:-1}" = 1 ]; then
   "$BUILD/bin/horizon_bench" --sizes 100 --reps 3 --shuffled --cloud-points 1000000 | tee "$OUT/cpu_bench.csv"
   "$BUILD/bin/horizon_periodic_bench" --reps 7 | tee "$OUT/periodic_bench.csv"
   "$BUILD/bin/horizon_radii_bench" --points 1000000 --reps 3 | tee "$OUT/radii_bench.csv"
+  "$BUILD/bin/horizon_bench" --latency --busy 0,-1 | tee "$OUT/latency.csv"
 fi

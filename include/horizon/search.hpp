@@ -74,6 +74,9 @@ struct PartStats {
 struct SearchStats {
   Backend backend = Backend::serial;
   int threads = 1;
+  /// Why that backend and thread count: "asked for", or what Backend::automatic went by (the
+  /// problem's size, the usable CPUs, busy cores, a usable GPU).
+  std::string choice;
   double grid_seconds = 0;    ///< bounds, cell coordinates, sort by cell
   double search_seconds = 0;  ///< distance tests and CSR assembly
   // cuda only: the GPU, its peak memory, and the host<->device split of the time.
@@ -90,6 +93,12 @@ struct SearchStats {
 /// The neighbour list of `points` against themselves. Throws horizon::Error on NaN/Inf
 /// coordinates, a horizon that is not finite and > 0, k outside 1..3, or >= 2^31 points.
 NeighborList search(PointView points, const SearchOptions& options, SearchStats* stats = nullptr);
+
+/// Pays now what a first search of `backend` would pay: the thread pool (as many threads as a
+/// large problem would take), the SIMD dispatch and, for cuda, the GPU's context, memory pool and
+/// streams (automatic: the CPU's and, when one is usable, the GPU's). For callers who want their
+/// first step to cost what the others do. Throws horizon::Error for a backend not available here.
+void warm_up(Backend backend = Backend::automatic);
 
 /// The families of `queries` among `references` (two point sets of the same dimension): row q
 /// holds every reference r with d(q, r) < horizon; nothing is excluded as "self" (a query equal

@@ -20,13 +20,17 @@ from . import _horizon
 
 __version__ = _horizon.__version__  # the C++ library's, set by CMake's project(VERSION)
 
-__all__ = ["__version__", "search", "NeighborList", "DeviceNeighborList", "VerletList", "load", "lattice", "random_cloud", "clustered_cloud", "backend_available"]
+__all__ = ["__version__", "search", "warm_up", "NeighborList", "DeviceNeighborList", "VerletList", "load", "lattice", "random_cloud", "clustered_cloud", "backend_available"]
 
 
 class NeighborList:
     """A neighbour list in CSR form: row i (the family of point i) is
     indices[offsets[i]:offsets[i + 1]]. offsets is int64 (N + 1), indices int32; when the list
     comes from search() both are read-only views of horizon's buffers (no copy)."""
+
+    backend = None         #: the backend that built the list ("serial", "openmp", "cuda"); None if not searched
+    threads = None         #: the threads it used
+    backend_choice = None  #: why that backend and thread count (backend="auto" says what it went by)
 
     def __init__(self, offsets, indices, half=False, references=None):
         self.offsets = offsets
@@ -339,7 +343,15 @@ def search(points, horizon=None, *, backend="auto", metric="l2", half=False, sor
     offsets, indices = owned.offsets, owned.indices
     offsets.flags.writeable = False
     indices.flags.writeable = False
-    return NeighborList(offsets, indices, half, None if reference_array is None else len(reference_array))
+    nl = NeighborList(offsets, indices, half, None if reference_array is None else len(reference_array))
+    nl.backend, nl.threads, nl.backend_choice = owned.backend, owned.threads, owned.choice
+    return nl
+
+
+def warm_up(backend="auto"):
+    """Pays now what a first search on `backend` would pay (the thread pool, the SIMD dispatch, a
+    GPU's context and memory pool), so that a solver's first step costs what the others do."""
+    _horizon.warm_up(str(backend))
 
 
 def _byte_count(value, name):

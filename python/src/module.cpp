@@ -31,6 +31,7 @@ namespace {
 /// A list owned by Python.
 struct OwnedList {
   horizon::NeighborList list;
+  horizon::SearchStats stats;  ///< what ran and why (searches only)
 };
 
 /// A Verlet list owned by Python (it keeps its own copy of the positions at the build).
@@ -95,18 +96,25 @@ OwnedList search(py::array points, double horizon, const std::string& metric, bo
                              horizon::radius_rule_name(rule));
       const horizon::PointView reference_view = point_view(*references);
       py::gil_scoped_release unlocked;
-      return OwnedList{horizon::search_with_radii(view, values, reference_view, options)};
+      OwnedList owned;
+      owned.list = horizon::search_with_radii(view, values, reference_view, options, &owned.stats);
+      return owned;
     }
     py::gil_scoped_release unlocked;
-    return OwnedList{horizon::search_with_radii(view, values, rule, options)};
+    OwnedList owned;
+    owned.list = horizon::search_with_radii(view, values, rule, options, &owned.stats);
+    return owned;
   }
+  OwnedList owned;
   if (references) {
     const horizon::PointView reference_view = point_view(*references);
     py::gil_scoped_release unlocked;
-    return OwnedList{horizon::search(view, reference_view, options)};
+    owned.list = horizon::search(view, reference_view, options, &owned.stats);
+    return owned;
   }
   py::gil_scoped_release unlocked;
-  return OwnedList{horizon::search(view, options)};
+  owned.list = horizon::search(view, options, &owned.stats);
+  return owned;
 }
 
 OwnedVerlet build_verlet(py::array points, double horizon, double skin, const std::string& metric, bool half,
@@ -205,7 +213,10 @@ PYBIND11_MODULE(_horizon, m) {
       .def_property_readonly("indices", [](py::object self) {
         const auto& list = self.cast<const OwnedList&>().list;
         return view(list.indices().data(), list.indices().size(), self);
-      });
+      })
+      .def_property_readonly("backend", [](const OwnedList& l) { return std::string(horizon::backend_name(l.stats.backend)); })
+      .def_property_readonly("threads", [](const OwnedList& l) { return l.stats.threads; })
+      .def_property_readonly("choice", [](const OwnedList& l) { return l.stats.choice; });
 
   py::class_<OwnedVerlet>(m, "OwnedVerlet")
       .def("needs_rebuild", [](const OwnedVerlet& v, py::array points, int threads) {
@@ -261,6 +272,11 @@ PYBIND11_MODULE(_horizon, m) {
   m.def("clustered_cloud", [](std::size_t count, int clusters, double sigma, int dims, std::uint64_t seed,
                               double side) {
     return to_array(horizon::clustered_cloud(count, clusters, sigma, dims, seed, side));
+  });
+  m.def("warm_up", [](const std::string& backend) {
+    const horizon::Backend parsed = horizon::parse_backend(backend);
+    py::gil_scoped_release unlocked;
+    horizon::warm_up(parsed);
   });
   m.def("backend_available", [](const std::string& name) {
     return horizon::backend_available(horizon::parse_backend(name));

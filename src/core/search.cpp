@@ -1,10 +1,12 @@
 #include "horizon/search.hpp"
+#include "backend_choice.hpp"
 
 #include "../backends/backends.hpp"
 #include "family_search.hpp"
 #include "partitioned_search.hpp"
 #include "reference_search.hpp"
 #include "horizon/error.hpp"
+#include "horizon/generate.hpp"
 #include "horizon/grid.hpp"
 
 namespace horizon {
@@ -50,12 +52,12 @@ void detail::validate_search(PointView points, const SearchOptions& options, boo
                 " points");
 }
 
-NeighborList search(PointView points, const SearchOptions& options, SearchStats* stats) {
-  Backend backend = options.backend;
-  if (backend == Backend::automatic)
-    backend = backend_available(Backend::cuda)     ? Backend::cuda
-              : backend_available(Backend::openmp) ? Backend::openmp
-                                                   : Backend::serial;
+NeighborList search(PointView points, const SearchOptions& given, SearchStats* stats) {
+  const detail::BackendChoice choice = detail::choose_backend(points.size(), given);
+  SearchOptions options = given;
+  options.backend = choice.backend;
+  options.threads = choice.threads;
+  const Backend backend = options.backend;
   // One GPU checks the coordinates' values once they are uploaded (search_cuda): here they
   // would all be read once more, 3-5 ms of a 25 ms host->host search (lattice 200, H200).
   const bool available = backend_available(backend);
@@ -64,6 +66,7 @@ NeighborList search(PointView points, const SearchOptions& options, SearchStats*
   SearchStats local;
   SearchStats& out = stats ? *stats : local;
   out = SearchStats{};
+  out.choice = choice.reason;
   if (!available)
     throw Error(std::string("backend '") + backend_name(backend) + "' is not available here");
   out.backend = backend;
@@ -96,12 +99,39 @@ NeighborList search(PointView points, const SearchOptions& options, SearchStats*
   }
 }
 
-NeighborList search(PointView queries, PointView references, const SearchOptions& options, SearchStats* stats) {
+NeighborList search(PointView queries, PointView references, const SearchOptions& given, SearchStats* stats) {
   validate(queries);
   validate(references);
-  validate_horizon(options.horizon, options.cells_per_horizon);
+  validate_horizon(given.horizon, given.cells_per_horizon);
+  const detail::BackendChoice choice = detail::choose_backend(queries.size() + references.size(), given);
+  SearchOptions options = given;
+  options.backend = choice.backend;
+  options.threads = choice.threads;
   SearchStats local;
-  return detail::search_references(queries, references, options, stats ? *stats : local);
+  SearchStats& out = stats ? *stats : local;
+  NeighborList list = detail::search_references(queries, references, options, out);
+  out.choice = choice.reason;
+  return list;
+}
+
+void warm_up(Backend backend) {
+  if (!backend_available(backend))
+    throw Error(std::string("backend '") + backend_name(backend) + "' is not available here");
+  const PointSet points = random_cloud(512, 3, 1, 4.0);  // a search takes every code path's dispatch
+  SearchOptions options;
+  options.horizon = 1.0;
+  if (backend != Backend::cuda) {
+    const int threads = backend == Backend::serial ? 1 : detail::usable_cpus();
+#pragma omp parallel num_threads(threads) if (threads > 1)
+    {
+    }
+    options.backend = Backend::serial;
+    search(points.view(), options);
+  }
+  if (backend == Backend::cuda || (backend == Backend::automatic && backend_available(Backend::cuda))) {
+    options.backend = Backend::cuda;
+    search(points.view(), options);
+  }
 }
 
 }  // namespace horizon

@@ -1,0 +1,114 @@
+#include "latency.hpp"
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <thread>
+
+#include "horizon/generate.hpp"
+#include "horizon/search.hpp"
+#include "horizon/stopwatch.hpp"
+#include "textbook_cell_list.hpp"
+
+namespace bench {
+namespace {
+
+/// `count` processes that spin until stopped, as other ranks or a build sharing the cores would.
+class BusyProcesses {
+public:
+  explicit BusyProcesses(int count) {
+    for (int i = 0; i < count; ++i) {
+      const pid_t pid = fork();
+      if (pid == 0) {
+        volatile unsigned long spin = 0;
+        for (;;) spin = spin + 1;
+      }
+      if (pid > 0) children_.push_back(pid);
+    }
+    if (count > 0) std::this_thread::sleep_for(std::chrono::milliseconds(200));  // let them take the cores
+  }
+  ~BusyProcesses() {
+    for (pid_t pid : children_) kill(pid, SIGKILL);
+    for (pid_t pid : children_) waitpid(pid, nullptr, 0);
+  }
+  BusyProcesses(const BusyProcesses&) = delete;
+  BusyProcesses& operator=(const BusyProcesses&) = delete;
+
+private:
+  std::vector<pid_t> children_;
+};
+
+struct Calls {
+  double first_us = 0;
+  std::vector<double> us;  // every call after the first, sorted
+};
+
+/// The first call apart, then calls until `seconds` have passed (at least 11).
+Calls time_calls(const std::function<void()>& call, double seconds) {
+  Calls calls;
+  horizon::Stopwatch clock;
+  call();
+  calls.first_us = clock.lap() * 1e6;
+  const auto start = std::chrono::steady_clock::now();
+  const auto spent = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  while (calls.us.size() < 11 || (spent() < seconds && calls.us.size() < 100000)) {
+    clock.lap();
+    call();
+    calls.us.push_back(clock.lap() * 1e6);
+  }
+  std::sort(calls.us.begin(), calls.us.end());
+  return calls;
+}
+
+double quantile(const std::vector<double>& sorted, double q) {
+  return sorted[std::min(sorted.size() - 1, static_cast<std::size_t>(q * static_cast<double>(sorted.size())))];
+}
+
+}  // namespace
+
+int run_latency(const LatencyOptions& options) {
+  const int hardware = static_cast<int>(std::thread::hardware_concurrency());
+  std::printf("# latency: random clouds with %g neighbours per point on average; %d hardware threads; %s\n",
+              options.neighbours, hardware, horizon::cpu_simd_target());
+  std::printf("busy,points,backend,threads,calls,median_us,p99_us,max_us,first_us,entries\n");
+  for (int busy : options.busy) {
+    const int processes = busy < 0 ? hardware : busy;
+    BusyProcesses load(processes);
+    for (int n : options.sizes) {
+      // Density for the wanted neighbours with horizon 1: n points in a cube of side L.
+      const double side = std::cbrt(static_cast<double>(n) * 4.18879 / options.neighbours);
+      const horizon::PointSet points = horizon::random_cloud(static_cast<std::size_t>(n), 3, 11, side);
+      const auto report = [&](const char* name, int threads, const Calls& calls, long long entries) {
+        std::printf("%d,%d,%s,%d,%zu,%.1f,%.1f,%.1f,%.1f,%lld\n", processes, n, name, threads, calls.us.size() + 1,
+                    quantile(calls.us, 0.5), quantile(calls.us, 0.99), calls.us.back(), calls.first_us, entries);
+        std::fflush(stdout);
+      };
+      long long entries = 0;
+      const Calls textbook = time_calls([&] { entries = static_cast<long long>(textbook_cell_list(points, 1.0, 1).indices.size()); },
+                                        options.seconds);
+      report("textbook", 1, textbook, entries);
+      for (horizon::Backend backend : {horizon::Backend::serial, horizon::Backend::openmp, horizon::Backend::automatic}) {
+        horizon::SearchOptions search;
+        search.horizon = 1.0;
+        search.backend = backend;
+        horizon::SearchStats stats;
+        const Calls calls = time_calls([&] { entries = horizon::search(points.view(), search, &stats).total(); },
+                                       options.seconds);
+        const std::string name = backend == horizon::Backend::automatic
+                                     ? std::string("auto:") + horizon::backend_name(stats.backend)
+                                     : horizon::backend_name(backend);
+        report(name.c_str(), stats.threads, calls, entries);
+      }
+    }
+  }
+  return 0;
+}
+
+}  // namespace bench

@@ -1,0 +1,109 @@
+#include "backend_choice.hpp"
+
+#include <fcntl.h>
+#include <omp.h>
+#include <sched.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+namespace horizon::detail {
+namespace {
+
+// Below this many points per thread a thread costs more than it saves (fork/join and barriers
+// against its share of the work): measured with horizon_bench --latency (docs/performance).
+constexpr std::size_t points_per_thread = 4096;
+
+/// A cgroup's CPU quota in CPUs, rounded up (0: none): cgroup v2's cpu.max, else v1's cfs files.
+int cgroup_cpus() {
+  double quota = 0, period = 0;
+  std::ifstream v2("/sys/fs/cgroup/cpu.max");
+  std::string max;
+  if (v2 >> max >> period) {
+    if (max == "max" || period <= 0) return 0;
+    quota = std::stod(max);
+  } else {
+    std::ifstream v1_quota("/sys/fs/cgroup/cpu/cpu.cfs_quota_us"), v1_period("/sys/fs/cgroup/cpu/cpu.cfs_period_us");
+    if (!(v1_quota >> quota) || !(v1_period >> period) || quota <= 0 || period <= 0) return 0;
+  }
+  return std::max(1, static_cast<int>(std::ceil(quota / period)));
+}
+
+}  // namespace
+
+int usable_cpus() {
+  static const int quota = cgroup_cpus();  // fixed for the process's life; the mask is not
+  int cpus = omp_get_max_threads();
+  cpu_set_t mask;
+  if (sched_getaffinity(0, sizeof mask, &mask) == 0) cpus = std::min(cpus, CPU_COUNT(&mask));
+  if (quota > 0) cpus = std::min(cpus, quota);
+  return std::max(1, cpus);
+}
+
+/// The start of a small /proc file ("" when it cannot be read): one open and read, a few µs.
+static std::string read_proc(const char* path) {
+  const int fd = open(path, O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return {};
+  char text[256] = {};
+  const ssize_t length = read(fd, text, sizeof text - 1);
+  close(fd);
+  return length > 0 ? std::string(text, static_cast<std::size_t>(length)) : std::string();
+}
+
+int other_runnable_threads(int own) {
+  // The fourth field of /proc/loadavg is "runnable/total" scheduling entities right now.
+  double one, five, fifteen;
+  int runnable = 0, total = 0;
+  if (std::sscanf(read_proc("/proc/loadavg").c_str(), "%lf %lf %lf %d/%d", &one, &five, &fifteen, &runnable, &total) != 5)
+    return 0;
+  const int others = std::max(0, runnable - std::max(1, own));
+  // A process starting beside us (a shell pipe's other end) is runnable for a moment too; only
+  // contention that lasts counts: some task waited for a CPU in over a tenth of the last 10 s
+  // (pressure stall information, where the kernel has it).
+  double waiting = 0;
+  const std::string pressure = read_proc("/proc/pressure/cpu");
+  if (!pressure.empty() && std::sscanf(pressure.c_str(), "some avg10=%lf", &waiting) == 1 && waiting < 10.0) return 0;
+  return others;
+}
+
+BackendChoice choose_backend(std::size_t points, const SearchOptions& options) {
+  static thread_local int last_team = 1;  // this thread's last team: its workers may still be spinning
+  BackendChoice choice;
+  const int cpus = usable_cpus();
+  if (options.backend != Backend::automatic) {
+    choice.backend = options.backend;
+    choice.threads = options.backend == Backend::serial ? 1 : options.threads > 0 ? options.threads : cpus;
+    choice.reason = "asked for";
+    return choice;
+  }
+  if (!options.devices.empty() || backend_available(Backend::cuda)) {
+    choice.backend = Backend::cuda;
+    choice.reason = options.devices.empty() ? "a GPU is usable" : "devices given";
+    return choice;
+  }
+  if (options.threads > 0) {
+    choice.threads = options.threads;
+    choice.reason = "threads given";
+  } else {
+    const auto worth = static_cast<int>(std::min<std::size_t>(points / points_per_thread, 1 << 16));
+    choice.threads = std::max(1, std::min(cpus, worth));
+    choice.reason = choice.threads == cpus ? std::to_string(cpus) + " usable CPUs"
+                                           : "points: " + std::to_string(points_per_thread) + " or more per thread";
+    if (choice.threads > 1) {
+      const int free = cpus - other_runnable_threads(last_team);
+      if (free < choice.threads) {
+        choice.threads = std::max(1, free);
+        choice.reason = "cores busy: " + std::to_string(cpus - free) + " other runnable threads";
+      }
+    }
+  }
+  last_team = choice.threads;
+  choice.backend = choice.threads > 1 ? Backend::openmp : Backend::serial;
+  return choice;
+}
+
+}  // namespace horizon::detail
