@@ -76,7 +76,7 @@ test-sanitize: deps
 	cd build-sanitize && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  HORIZON_DIFFERENTIAL_PROBLEMS=100 ctest --output-on-failure -j $(JOBS) -E "mpi|find_package_consumer"
 	cd build-sanitize && ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
-	  HORIZON_DIFFERENTIAL_PROBLEMS=100 ctest --output-on-failure -j $(JOBS) -R mpi
+	  HORIZON_DIFFERENTIAL_PROBLEMS=40 ctest --output-on-failure -j $(JOBS) -R mpi
 
 # libFuzzer (Debian's clang) over every reader of user files, FUZZ_SECONDS per target, JOBS
 # targets at a time; inputs that reach new code are merged into the committed corpus, which
