@@ -3,26 +3,17 @@
 // before the next call as a solver searching every step does. Prints CSV; c_over_cpp is the
 // ratio of the medians.
 #include <CLI/CLI.hpp>
-#include <algorithm>
 #include <cmath>
-#include <tuple>
 #include <cstdio>
 #include <cstdlib>
+#include <tuple>
 #include <vector>
 
 #include "horizon/generate.hpp"
 #include "horizon/horizon.h"
 #include "horizon/search.hpp"
 #include "horizon/stopwatch.hpp"
-
-namespace {
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
-
-}  // namespace
+#include "median_seconds.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"horizon through its C API against the C++ call"};

@@ -23,6 +23,7 @@
 #include "horizon/generate.hpp"
 #include "horizon/search.hpp"
 #include "horizon/stopwatch.hpp"
+#include "median_seconds.hpp"
 #include "naive_gpu_cell_list.hpp"
 
 namespace {
@@ -65,10 +66,6 @@ Bandwidth measure_bandwidth() {
   return bw;
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
 
 }  // namespace
 

@@ -1,9 +1,15 @@
 #pragma once
-// The benchmarks' timer: the median of `reps` runs of a callable, in seconds.
+// The benchmarks' medians: of a set of timings, and of `reps` runs of a callable, in seconds.
 #include <algorithm>
+#include <utility>
 #include <vector>
 
 #include "horizon/stopwatch.hpp"
+
+inline double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
 
 template <class F>
 double median_seconds(int reps, F once) {
@@ -13,6 +19,5 @@ double median_seconds(int reps, F once) {
     once();
     t.push_back(clock.lap());
   }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
+  return median(std::move(t));
 }

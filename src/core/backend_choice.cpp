@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <cstdlib>
 #include <string>
 
 namespace horizon::detail {
@@ -18,18 +18,28 @@ namespace {
 // against its share of the work): measured with horizon_bench --latency (docs/performance).
 constexpr std::size_t points_per_thread = 4096;
 
+/// The start of a small /proc file ("" when it cannot be read): one open and read, a few µs.
+std::string read_proc(const char* path) {
+  const int fd = open(path, O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return {};
+  char text[256] = {};
+  const ssize_t length = read(fd, text, sizeof text - 1);
+  close(fd);
+  return length > 0 ? std::string(text, static_cast<std::size_t>(length)) : std::string();
+}
+
 /// A cgroup's CPU quota in CPUs, rounded up (0: none): cgroup v2's cpu.max, else v1's cfs files.
 int cgroup_cpus() {
   double quota = 0, period = 0;
-  std::ifstream v2("/sys/fs/cgroup/cpu.max");
-  std::string max;
-  if (v2 >> max >> period) {
-    if (max == "max" || period <= 0) return 0;
-    quota = std::stod(max);
-  } else {
-    std::ifstream v1_quota("/sys/fs/cgroup/cpu/cpu.cfs_quota_us"), v1_period("/sys/fs/cgroup/cpu/cpu.cfs_period_us");
-    if (!(v1_quota >> quota) || !(v1_period >> period) || quota <= 0 || period <= 0) return 0;
+  char max[32] = {};
+  if (std::sscanf(read_proc("/sys/fs/cgroup/cpu.max").c_str(), "%31s %lf", max, &period) == 2) {
+    if (std::string(max) == "max" || period <= 0) return 0;
+    quota = std::atof(max);
+  } else if (std::sscanf(read_proc("/sys/fs/cgroup/cpu/cpu.cfs_quota_us").c_str(), "%lf", &quota) != 1 ||
+             std::sscanf(read_proc("/sys/fs/cgroup/cpu/cpu.cfs_period_us").c_str(), "%lf", &period) != 1) {
+    return 0;
   }
+  if (quota <= 0 || period <= 0) return 0;
   return std::max(1, static_cast<int>(std::ceil(quota / period)));
 }
 
@@ -42,16 +52,6 @@ int usable_cpus() {
   if (sched_getaffinity(0, sizeof mask, &mask) == 0) cpus = std::min(cpus, CPU_COUNT(&mask));
   if (quota > 0) cpus = std::min(cpus, quota);
   return std::max(1, cpus);
-}
-
-/// The start of a small /proc file ("" when it cannot be read): one open and read, a few µs.
-static std::string read_proc(const char* path) {
-  const int fd = open(path, O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return {};
-  char text[256] = {};
-  const ssize_t length = read(fd, text, sizeof text - 1);
-  close(fd);
-  return length > 0 ? std::string(text, static_cast<std::size_t>(length)) : std::string();
 }
 
 int other_runnable_threads(int own) {
