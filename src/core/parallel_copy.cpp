@@ -18,8 +18,13 @@ namespace horizon::detail {
 namespace {
 
 constexpr std::size_t huge_page = std::size_t{2} << 20;
+thread_local int bounded_threads = 0;  // 0: no CopyThreads on this thread
 
 }  // namespace
+
+int copy_threads() { return bounded_threads > 0 ? bounded_threads : omp_get_max_threads(); }
+CopyThreads::CopyThreads(int threads) : saved_(bounded_threads) { bounded_threads = threads > 0 ? threads : saved_; }
+CopyThreads::~CopyThreads() { bounded_threads = saved_; }
 
 void stream_copy(void* destination, const void* source, std::size_t bytes) {
   auto* to = static_cast<char*>(destination);
@@ -51,14 +56,15 @@ void parallel_copy(void* to, const void* from, std::size_t bytes) {
   // Pieces of 2 MB, each ending at a 2 MB boundary of the destination, when there are enough for
   // every core; a smaller copy (the chunks at either end of a staged transfer) is cut into one
   // piece per core instead of leaving most of them idle.
-  const auto threads = static_cast<std::size_t>(omp_get_max_threads());
+  const int team = copy_threads();
+  const auto threads = static_cast<std::size_t>(team);
   constexpr std::size_t page = 4096, smallest = 16 * page;
   const std::size_t piece =
       bytes >= threads * huge_page ? huge_page : std::max(smallest, (bytes / threads + page - 1) / page * page);
   // Piece i ends at the (i + 1)-th multiple of `piece` in the address space past the start.
   const std::size_t lead = piece - reinterpret_cast<std::uintptr_t>(dest) % piece;
   const auto pieces = static_cast<std::int64_t>(bytes <= lead ? 1 : 1 + (bytes - lead + piece - 1) / piece);
-#pragma omp parallel for schedule(static) if (pieces > 2)
+#pragma omp parallel for schedule(static) num_threads(team) if (pieces > 2 && team > 1)
   for (std::int64_t i = 0; i < pieces; ++i) {
     const std::size_t begin = i == 0 ? 0 : lead + static_cast<std::size_t>(i - 1) * piece;
     const std::size_t end = std::min(bytes, lead + static_cast<std::size_t>(i) * piece);
@@ -73,7 +79,8 @@ void parallel_copy_coordinates(double* to, PointView points, std::size_t first, 
   }
   const auto dims = static_cast<std::size_t>(points.dims());
   const auto n = static_cast<std::int64_t>(count);
-#pragma omp parallel for schedule(static) if (n > (1 << 16))
+  const int team = copy_threads();
+#pragma omp parallel for schedule(static) num_threads(team) if (n > (1 << 16) && team > 1)
   for (std::int64_t i = 0; i < n; ++i) {
     const std::size_t at = first + static_cast<std::size_t>(i);
     to[i] = points(at / dims, static_cast<int>(at % dims));
@@ -84,7 +91,8 @@ void parallel_touch(void* at, std::size_t bytes) {
   constexpr std::size_t page = 4096;
   const auto pages = static_cast<std::int64_t>((bytes + page - 1) / page);
   char* base = static_cast<char*>(at);
-#pragma omp parallel for schedule(static) if (pages > 256)
+  const int team = copy_threads();
+#pragma omp parallel for schedule(static) num_threads(team) if (pages > 256 && team > 1)
   for (std::int64_t i = 0; i < pages; ++i) base[static_cast<std::size_t>(i) * page] = 0;
 }
 

@@ -7,6 +7,21 @@
 
 namespace horizon::detail {
 
+/// The threads the copies below use on the calling thread: omp_get_max_threads(), or while a
+/// CopyThreads lives on this thread, its count (a search's own thread count: a copy that asks
+/// for cores which other processes hold waits a scheduler time slice at its barrier).
+int copy_threads();
+class CopyThreads {
+public:
+  explicit CopyThreads(int threads);
+  ~CopyThreads();
+  CopyThreads(const CopyThreads&) = delete;
+  CopyThreads& operator=(const CopyThreads&) = delete;
+
+private:
+  int saved_;
+};
+
 /// Copies with non-temporal stores where the CPU has them (the destination is not read back
 /// first): on the H200 host a staged device -> host copy ran at 1.3x the PCIe floor this way
 /// and at 1.9x with memcpy's ordinary stores. Each core takes whole 2 MB pieces of the

@@ -1,5 +1,6 @@
 #include "horizon/search.hpp"
 #include "backend_choice.hpp"
+#include "parallel_copy.hpp"
 
 #include "../backends/backends.hpp"
 #include "family_search.hpp"
@@ -94,7 +95,10 @@ NeighborList search(PointView points, const SearchOptions& given, SearchStats* s
 
   switch (backend) {
     case Backend::openmp: return detail::search_openmp(points, options, out);
-    case Backend::cuda: return detail::search_cuda(points, options, out);
+    case Backend::cuda: {
+      const detail::CopyThreads copies(options.threads);
+      return detail::search_cuda(points, options, out);
+    }
     default: return detail::search_serial(points, options, out);
   }
 }
