@@ -2,7 +2,8 @@
 /// \file neighbor_list.hpp
 /// The result: every point's family in compressed sparse rows. Row i lists the input ids of
 /// i's neighbours in ascending order. In a full list j is in row i exactly when i is in row j;
-/// a half list keeps each pair once, in the row of its smaller id.
+/// a half list keeps each pair once, in the row of its smaller id. A search with a periodic
+/// cell (cell.hpp) may list j several times in a row, once per periodic image.
 #include <cstdint>
 #include <span>
 #include <utility>
@@ -37,11 +38,24 @@ public:
   const Buffer<std::int64_t>& offsets() const { return offsets_; }
   const Buffer<point_id>& indices() const { return indices_; }
 
+  /// Per-entry geometry, when SearchOptions::outputs asked for it (else empty): for entry e,
+  /// shifts()[e * dims + a], distances()[e] and vectors()[e * dims + a] (dims: the points').
+  const Buffer<std::int32_t>& shifts() const { return shifts_; }
+  const Buffer<double>& distances() const { return distances_; }
+  const Buffer<double>& vectors() const { return vectors_; }
+  /// Attaches the per-entry geometry (each empty, or sized as shifts() etc. say).
+  void set_geometry(Buffer<std::int32_t> shifts, Buffer<double> distances, Buffer<double> vectors) {
+    shifts_ = std::move(shifts);
+    distances_ = std::move(distances);
+    vectors_ = std::move(vectors);
+  }
+
   /// Gives up the CSR arrays (the list is left empty), for filters that reuse them in place.
   std::pair<Buffer<std::int64_t>, Buffer<point_id>> release() && {
     std::pair<Buffer<std::int64_t>, Buffer<point_id>> arrays{std::move(offsets_), std::move(indices_)};
     offsets_.assign(1, 0);
     indices_.clear();
+    set_geometry({}, {}, {});
     return arrays;
   }
 
@@ -51,6 +65,8 @@ private:
   Buffer<std::int64_t> offsets_;
   Buffer<point_id> indices_;
   bool half_ = false;
+  Buffer<std::int32_t> shifts_;
+  Buffer<double> distances_, vectors_;
 };
 
 }  // namespace horizon

@@ -16,8 +16,21 @@ enum class RadiusRule {
   scatter,  ///< d(i, j) < r_j: the points whose radius reaches i
   max,      ///< d(i, j) < max(r_i, r_j) (symmetric)
   min,      ///< d(i, j) < min(r_i, r_j) (symmetric)
+  sum,      ///< d(i, j) < r_i + r_j (symmetric; ASE's per-atom cutoffs)
 };
-/// "gather", "scatter", "max", "min" (the CLI spelling) and back.
+
+/// The horizon `rule` gives the pair of points with radii r_i and r_j.
+inline double pair_radius(RadiusRule rule, double r_i, double r_j) {
+  switch (rule) {
+    case RadiusRule::gather: return r_i;
+    case RadiusRule::scatter: return r_j;
+    case RadiusRule::max: return r_i > r_j ? r_i : r_j;
+    case RadiusRule::min: return r_i < r_j ? r_i : r_j;
+    case RadiusRule::sum: return r_i + r_j;
+  }
+  return 0;
+}
+/// "gather", "scatter", "max", "min", "sum" (the CLI spelling) and back.
 RadiusRule parse_radius_rule(const std::string& name);
 const char* radius_rule_name(RadiusRule rule);
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "horizon/cell.hpp"
 #include "horizon/metric.hpp"
 #include "horizon/neighbor_list.hpp"
 #include "horizon/points.hpp"
@@ -57,6 +58,19 @@ struct SearchOptions {
   /// row. Images are points of their own: image coordinates x_j +- box[a] are rounded to double
   /// before the pair test, as the oracle does.
   std::array<double, 3> box{0, 0, 0};
+  /// A periodic cell of any shape (cell.hpp), for atomistic systems; exclusive with `box`. Points
+  /// may lie anywhere and the horizon may exceed the cell: row i lists every image of every j
+  /// within the horizon, each an entry (i, j, S) of its own with its integer shift S, ordered by
+  /// j, then S (lexicographically); i with itself at S = 0 only with `self_interaction`. A half
+  /// list keeps (i, j, S) with i < j, or i = j and S > 0 (its first non-zero component). The
+  /// pair test is the metric's on D = x_j + S . cell - x_i, computed in that order:
+  /// D_a = (x_j,a - x_i,a) + ((S_0 c_0a + S_1 c_1a) + S_2 c_2a), the same on every backend.
+  Cell cell;
+  /// Shifts, distances and vectors per entry (cell.hpp): they put the search on the cell path
+  /// (as a cell does; `box` then counts as an orthorhombic cell), even without periodic axes.
+  PairOutputs outputs;
+  /// With a cell or outputs: point i is its own neighbour at shift 0 (ASE's self_interaction).
+  bool self_interaction = false;
 };
 
 /// One part of a search over several devices: its device, points and time.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "cell_search.hpp"
 #include "horizon/radii.hpp"
 
 namespace horizon {
@@ -65,6 +66,7 @@ std::vector<point_id> brute_force_family(PointView points, std::size_t i,
 }
 
 NeighborList brute_force(PointView points, const SearchOptions& options) {
+  if (detail::needs_cell_search(options)) return detail::brute_force_cell(points, options, {}, RadiusRule::gather);
   Buffer<std::int64_t> offsets{0};
   Buffer<point_id> indices;
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -83,6 +85,8 @@ NeighborList brute_force(PointView queries, PointView references, const SearchOp
 
 NeighborList brute_force_with_radii(PointView points, std::span<const double> radii, RadiusRule rule,
                                     const SearchOptions& options) {
+  if (detail::needs_cell_search(options) || rule == RadiusRule::sum)
+    return detail::brute_force_cell(points, options, radii, rule);
   Buffer<std::int64_t> offsets{0};
   Buffer<point_id> indices;
   SearchOptions pair = options;
@@ -92,7 +96,7 @@ NeighborList brute_force_with_radii(PointView points, std::span<const double> ra
         case RadiusRule::gather: pair.horizon = radii[i]; break;
         case RadiusRule::scatter: pair.horizon = radii[j]; break;
         case RadiusRule::max: pair.horizon = std::max(radii[i], radii[j]); break;
-        case RadiusRule::min: pair.horizon = std::min(radii[i], radii[j]); break;
+        default: pair.horizon = pair_radius(rule, radii[i], radii[j]); break;
       }
       if (j != i && neighbours(points, i, points, j, pair)) indices.push_back(static_cast<point_id>(j));
     }

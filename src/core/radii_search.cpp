@@ -9,6 +9,8 @@
 #include <omp.h>
 
 #include "../backends/backends.hpp"
+#include "backend_choice.hpp"
+#include "cell_search.hpp"
 #include "family_search.hpp"
 #include "parallel_scan.hpp"
 #include "transpose_rows.hpp"
@@ -24,7 +26,8 @@ RadiusRule parse_radius_rule(const std::string& name) {
   if (name == "scatter") return RadiusRule::scatter;
   if (name == "max") return RadiusRule::max;
   if (name == "min") return RadiusRule::min;
-  throw Error("unknown radius rule '" + name + "' (expected gather, scatter, max or min)");
+  if (name == "sum") return RadiusRule::sum;
+  throw Error("unknown radius rule '" + name + "' (expected gather, scatter, max, min or sum)");
 }
 
 const char* radius_rule_name(RadiusRule rule) {
@@ -33,6 +36,7 @@ const char* radius_rule_name(RadiusRule rule) {
     case RadiusRule::scatter: return "scatter";
     case RadiusRule::max: return "max";
     case RadiusRule::min: return "min";
+    case RadiusRule::sum: return "sum";
   }
   return "?";
 }
@@ -408,6 +412,22 @@ NeighborList search_with_radii(PointView queries, std::span<const double> radii,
 
 NeighborList search_with_radii(PointView points, std::span<const double> radii, RadiusRule rule,
                                const SearchOptions& options, SearchStats* stats) {
+  if (detail::needs_cell_search(options) || rule == RadiusRule::sum) {
+    // Atomistic radii (ASE's r_i + r_j) and cells: each pair tested once with its own radius.
+    detail::validate_points(points, 0);
+    const detail::BackendChoice choice = detail::choose_backend(points.size(), options);
+    SearchOptions chosen = options;
+    chosen.backend = choice.backend;
+    chosen.threads = choice.threads;
+    SearchStats local;
+    SearchStats& out = stats ? *stats : local;
+    out = SearchStats{};
+    const NeighborList list = detail::search_cell(points, chosen, radii, rule, out);
+    out.backend = choice.backend;
+    out.threads = choice.threads;
+    out.choice = choice.reason;
+    return list;
+  }
   validate_radii(points, radii, rule, options);
   SearchStats local;
   SearchStats& out = stats ? *stats : local;

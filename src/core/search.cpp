@@ -1,5 +1,6 @@
 #include "horizon/search.hpp"
 #include "backend_choice.hpp"
+#include "cell_search.hpp"
 #include "parallel_copy.hpp"
 
 #include "../backends/backends.hpp"
@@ -9,6 +10,7 @@
 #include "horizon/error.hpp"
 #include "horizon/generate.hpp"
 #include "horizon/grid.hpp"
+#include "horizon/radii.hpp"
 
 namespace horizon {
 
@@ -73,6 +75,11 @@ NeighborList search(PointView points, const SearchOptions& given, SearchStats* s
   out.backend = backend;
   if (!options.devices.empty() && backend != Backend::cuda)
     throw Error(std::string("devices are for the cuda backend, not '") + backend_name(backend) + "'");
+  if (detail::needs_cell_search(options)) {
+    NeighborList list = detail::search_cell(points, options, {}, RadiusRule::gather, out);
+    out.choice = choice.reason;
+    return list;
+  }
   if (detail::is_periodic(options)) return detail::search_periodic(points, backend, options, out);
   if (points.empty()) return NeighborList({0}, {}, options.half);
   if (backend == Backend::cuda && options.devices.size() > 1) {
@@ -106,6 +113,8 @@ NeighborList search(PointView points, const SearchOptions& given, SearchStats* s
 NeighborList search(PointView queries, PointView references, const SearchOptions& given, SearchStats* stats) {
   validate(queries);
   validate(references);
+  if (detail::needs_cell_search(given))
+    throw Error("a cell, outputs and self_interaction are for one point set, not queries against references");
   validate_horizon(given.horizon, given.cells_per_horizon);
   const detail::BackendChoice choice = detail::choose_backend(queries.size() + references.size(), given);
   SearchOptions options = given;

@@ -1,0 +1,304 @@
+#include "cell_search.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "cell_problem.hpp"
+#include "horizon/error.hpp"
+#include "horizon/grid.hpp"
+#include "horizon/stopwatch.hpp"
+#include "parallel_scan.hpp"
+
+namespace horizon::detail {
+
+bool needs_cell_search(const SearchOptions& options) {
+  return options.cell.periodic() || options.outputs.any() || options.self_interaction;
+}
+
+CellProblem cell_problem(PointView points, const SearchOptions& options, std::span<const double> radii,
+                         RadiusRule rule) {
+  const bool box = options.box[0] > 0 || options.box[1] > 0 || options.box[2] > 0;
+  if (box && options.cell.periodic()) throw Error("cell: give either a box or a cell, not both");
+  if (options.queries != 0) throw Error("cell: SearchOptions::queries cannot be combined with a cell or outputs");
+  CellProblem problem(CellFrame(box ? Cell::orthorhombic(options.box) : options.cell, points.dims()));
+  problem.metric = options.metric;
+  problem.half = options.half;
+  problem.self_interaction = options.self_interaction;
+  problem.outputs = options.outputs;
+  problem.horizon = options.horizon;
+  problem.radii = radii;
+  problem.rule = rule;
+  if (radii.empty()) {
+    validate_horizon(options.horizon, options.cells_per_horizon);
+    problem.largest = options.horizon;
+  } else {
+    if (radii.size() != points.size())
+      throw Error("radii: " + std::to_string(radii.size()) + " radii for " + std::to_string(points.size()) + " points");
+    for (std::size_t i = 0; i < radii.size(); ++i)
+      if (!(std::isfinite(radii[i]) && radii[i] > 0))
+        throw Error("radii: point " + std::to_string(i) + " has radius " + std::to_string(radii[i]) +
+                    " (each must be finite and > 0)");
+    if (options.half && (rule == RadiusRule::gather || rule == RadiusRule::scatter))
+      throw Error(std::string("radii: a half list needs a symmetric rule (max, min or sum), not ") +
+                  radius_rule_name(rule));
+    const double r = radii.empty() ? 0 : *std::max_element(radii.begin(), radii.end());
+    problem.largest = rule == RadiusRule::sum ? 2 * r : r;
+  }
+  return problem;
+}
+
+namespace {
+
+/// Points wrapped into the cell on its periodic axes, and their images: the wrapped points
+/// first (the queries), then each point's images in (point, shift) order.
+struct Images {
+  int dims = 3;
+  ScratchBuffer<double> original;     ///< the caller's coordinates as doubles
+  ScratchBuffer<double> xyz;          ///< wrapped points, then images
+  ScratchBuffer<std::int32_t> wraps;  ///< per point: the cells it was moved by (x = wrapped + w . cell)
+  ScratchBuffer<point_id> image_of;   ///< per image: its point
+  ScratchBuffer<std::int32_t> image_shift;  ///< per image: its shift G from the wrapped point
+};
+
+/// The range [lo, hi] of shifts along a periodic axis for a point at wrapped fractional
+/// coordinate f: every image within `reach` cells of the cell [0, 1).
+void shift_range(double f, double reach, std::int64_t& lo, std::int64_t& hi) {
+  lo = static_cast<std::int64_t>(std::ceil(-reach - f));
+  hi = static_cast<std::int64_t>(std::floor(1 + reach - f));
+  lo = std::min<std::int64_t>(lo, 0);  // the point itself, whatever rounding made of f
+  hi = std::max<std::int64_t>(hi, 0);
+}
+
+Images make_images(PointView points, const CellProblem& problem, double reach_margin, int threads) {
+  const int dims = points.dims();
+  const auto n = static_cast<std::int64_t>(points.size());
+  const CellFrame& frame = problem.frame;
+  Images images;
+  images.dims = dims;
+  images.original = ScratchBuffer<double>(points.size() * dims);
+  images.wraps = ScratchBuffer<std::int32_t>(points.size() * 3);
+  ScratchBuffer<double> fractional(points.size() * 3);
+  ScratchBuffer<std::int64_t> first(points.size() + 1);
+  double reach[3] = {0, 0, 0};
+  for (int a = 0; a < dims; ++a)
+    if (frame.pbc[a]) reach[a] = problem.cells_reach(a) * (1 + 1e-12) + reach_margin / frame.height[a];
+  // Ranges are per point (a point's own fraction decides which images are near the cell).
+  std::int64_t too_far = n;
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1 && n > 4096) reduction(min : too_far)
+  for (std::int64_t i = 0; i < n; ++i) {
+    double* x = images.original.data() + i * dims;
+    for (int a = 0; a < dims; ++a) x[a] = points(static_cast<std::size_t>(i), a);
+    std::int64_t count = 1;
+    for (int a = 0; a < 3; ++a) {
+      std::int32_t w = 0;
+      double f = 0;
+      if (a < dims && frame.pbc[a]) {
+        f = frame.fractional(x, a);
+        const double cells = std::floor(f);
+        if (!(std::fabs(cells) < 0x1p30)) too_far = std::min(too_far, i);
+        w = std::fabs(cells) < 0x1p30 ? static_cast<std::int32_t>(cells) : 0;
+        f -= w;
+        std::int64_t lo, hi;
+        shift_range(f, reach[a], lo, hi);
+        count *= hi - lo + 1;
+      }
+      images.wraps[i * 3 + a] = w;
+      fractional[i * 3 + a] = f;
+    }
+    first[i + 1] = count - 1;  // the point's own copy is a query, not an image
+  }
+  if (too_far < n)
+    throw Error("point " + std::to_string(too_far) + " lies more than 2^30 cells away from the cell");
+  first[0] = 0;
+  inclusive_scan(first.data() + 1, points.size(), threads);
+  const auto total = static_cast<std::size_t>(first[n]);
+  if (total + points.size() >= static_cast<std::size_t>(std::numeric_limits<point_id>::max()))
+    throw Error("cell: the points and their " + std::to_string(total) +
+                " periodic images within the horizon must be fewer than 2^31 - 1 (a horizon of many cells?)");
+  images.xyz = ScratchBuffer<double>((points.size() + total) * dims);
+  images.image_of = ScratchBuffer<point_id>(total);
+  images.image_shift = ScratchBuffer<std::int32_t>(total * 3);
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads) if (threads > 1 && n > 4096)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const double* x = images.original.data() + i * dims;
+    const std::int32_t* w = images.wraps.data() + i * 3;
+    double wrapped[3] = {0, 0, 0};
+    for (int a = 0; a < dims; ++a) {
+      double moved = 0;
+      for (int k = 0; k < dims; ++k) moved += w[k] * frame.vectors[k][a];
+      wrapped[a] = x[a] - moved;
+      images.xyz[i * dims + a] = wrapped[a];
+    }
+    std::int64_t lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    for (int a = 0; a < dims; ++a)
+      if (frame.pbc[a]) shift_range(fractional[i * 3 + a], reach[a], lo[a], hi[a]);
+    std::size_t at = static_cast<std::size_t>(first[i]);
+    for (std::int64_t g0 = lo[0]; g0 <= hi[0]; ++g0)
+      for (std::int64_t g1 = lo[1]; g1 <= hi[1]; ++g1)
+        for (std::int64_t g2 = lo[2]; g2 <= hi[2]; ++g2) {
+          if (g0 == 0 && g1 == 0 && g2 == 0) continue;
+          const std::int64_t g[3] = {g0, g1, g2};
+          double* image = images.xyz.data() + (points.size() + at) * dims;
+          for (int a = 0; a < dims; ++a) {
+            double moved = 0;
+            for (int k = 0; k < dims; ++k) moved += static_cast<double>(g[k]) * frame.vectors[k][a];
+            image[a] = wrapped[a] + moved;
+          }
+          images.image_of[at] = static_cast<point_id>(i);
+          for (int a = 0; a < 3; ++a) images.image_shift[at * 3 + a] = static_cast<std::int32_t>(g[a]);
+          ++at;
+        }
+  }
+  return images;
+}
+
+/// Walks row i of the engine's list in (j, S) order: the wrapped points' part (ascending j)
+/// and the images' part (ascending (j, G), so ascending (j, S)) merged, each candidate measured
+/// on the caller's coordinates and kept or dropped as the oracle does; `emit` gets each kept one.
+template <int D, Metric M, class Emit>
+void walk_row(std::span<const point_id> row, point_id i, const Images& images, const CellProblem& problem,
+              std::size_t points, Emit&& emit) {
+  const std::size_t split = static_cast<std::size_t>(
+      std::lower_bound(row.begin(), row.end(), static_cast<point_id>(points)) - row.begin());
+  const double* xi = images.original.data() + static_cast<std::size_t>(i) * D;
+  const std::int32_t* wi = images.wraps.data() + static_cast<std::size_t>(i) * 3;
+  const CellFrame& frame = problem.frame;
+  // Candidate k of a part: S = G - w_j + w_i (x = wrapped + w . cell), G = 0 for the wrapped points.
+  auto candidate = [&](point_id k, CellEntry& e) {
+    const bool image = static_cast<std::size_t>(k) >= points;
+    const std::size_t at = image ? static_cast<std::size_t>(k) - points : 0;
+    e.j = image ? images.image_of[at] : k;
+    const std::int32_t* wj = images.wraps.data() + static_cast<std::size_t>(e.j) * 3;
+    for (int a = 0; a < 3; ++a) e.shift[a] = (image ? images.image_shift[at * 3 + a] : 0) - wj[a] + wi[a];
+    measure<D, M>(xi, images.original.data() + static_cast<std::size_t>(e.j) * D, frame, e);
+    return e.accumulated < problem.threshold(static_cast<std::size_t>(i), static_cast<std::size_t>(e.j)) &&
+           problem.keeps(i, e);
+  };
+  // The next kept candidate of [at, end) (false: none); i itself at S = 0 joins the first part.
+  bool self_pending = problem.self_interaction;
+  auto next_home = [&](std::size_t& at, CellEntry& e) {
+    for (; at < split; ++at) {
+      if (self_pending && row[at] > i) break;
+      if (candidate(row[at], e)) {
+        ++at;
+        return true;
+      }
+    }
+    if (self_pending) {
+      self_pending = false;
+      e = CellEntry{};
+      e.j = i;
+      measure<D, M>(xi, xi, frame, e);
+      return true;
+    }
+    return false;
+  };
+  auto next_image = [&](std::size_t& at, CellEntry& e) {
+    for (; at < row.size(); ++at)
+      if (candidate(row[at], e)) {
+        ++at;
+        return true;
+      }
+    return false;
+  };
+  std::size_t home_at = 0, image_at = split;
+  CellEntry home, image;
+  bool has_home = next_home(home_at, home), has_image = next_image(image_at, image);
+  while (has_home || has_image) {
+    if (has_home && (!has_image || entry_before(home, image))) {
+      emit(home);
+      has_home = next_home(home_at, home);
+    } else {
+      emit(image);
+      has_image = next_image(image_at, image);
+    }
+  }
+}
+
+template <int D, Metric M>
+NeighborList map_rows(const NeighborList& candidates, const Images& images, const CellProblem& problem,
+                      std::size_t points, int threads) {
+  const auto rows = static_cast<std::int64_t>(points);
+  Buffer<std::int64_t> offsets(points + 1);
+  offsets[0] = 0;
+#pragma omp parallel for schedule(dynamic, 512) num_threads(threads) if (threads > 1)
+  for (std::int64_t i = 0; i < rows; ++i) {
+    std::int64_t count = 0;
+    walk_row<D, M>(candidates.row(static_cast<std::size_t>(i)), static_cast<point_id>(i), images, problem, points,
+                   [&](const CellEntry&) { ++count; });
+    offsets[i + 1] = count;
+  }
+  inclusive_scan(offsets.data() + 1, points, threads);
+  CellEntries entries(static_cast<std::size_t>(offsets[points]), D, problem.outputs, problem.metric);
+#pragma omp parallel for schedule(dynamic, 512) num_threads(threads) if (threads > 1)
+  for (std::int64_t i = 0; i < rows; ++i) {
+    auto at = static_cast<std::size_t>(offsets[i]);
+    walk_row<D, M>(candidates.row(static_cast<std::size_t>(i)), static_cast<point_id>(i), images, problem, points,
+                   [&](const CellEntry& e) { entries.write(at++, e); });
+  }
+  return std::move(entries).list(std::move(offsets), problem.half);
+}
+
+}  // namespace
+
+NeighborList search_cell(PointView points, const SearchOptions& options, std::span<const double> radii,
+                         RadiusRule rule, SearchStats& stats) {
+  Stopwatch clock;
+  const CellProblem problem = cell_problem(points, options, radii, rule);
+  const int threads = options.backend == Backend::serial ? 1 : std::max(1, options.threads);
+  const int dims = points.dims();
+  if (points.empty()) {
+    CellEntries none(0, dims, problem.outputs, problem.metric);
+    return std::move(none).list(Buffer<std::int64_t>{0}, options.half);
+  }
+  // The engine's horizon covers the rounding of wrapped and image coordinates: relative to the
+  // largest coordinate, cell vector and horizon involved.
+  double extent = problem.largest;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (int a = 0; a < dims; ++a) extent = std::max(extent, std::fabs(points(i, a)));
+  double cell_extent = 0;
+  for (int k = 0; k < dims; ++k)
+    if (problem.frame.pbc[k]) cell_extent += problem.frame.scale * (2 + problem.cells_reach(k));
+  const double margin = 0x1p-40 * (extent + cell_extent + problem.largest);
+  const Images images = make_images(points, problem, margin, threads);
+  const double images_seconds = clock.lap();
+
+  SearchOptions inner = options;
+  inner.horizon = problem.largest + margin;
+  inner.half = false;
+  inner.sort_rows = true;
+  inner.queries = points.size();
+  inner.box = {0, 0, 0};
+  inner.cell = Cell{};
+  inner.outputs = PairOutputs{};
+  inner.self_interaction = false;
+  const PointView local(images.xyz.data(), images.xyz.size() / static_cast<std::size_t>(dims), dims);
+  const NeighborList candidates = search(local, inner, &stats);
+  clock.lap();
+
+  NeighborList list;
+  const bool three = dims == 3;
+  switch (problem.metric) {
+    case Metric::euclidean:
+      list = three ? map_rows<3, Metric::euclidean>(candidates, images, problem, points.size(), threads)
+                   : map_rows<2, Metric::euclidean>(candidates, images, problem, points.size(), threads);
+      break;
+    case Metric::manhattan:
+      list = three ? map_rows<3, Metric::manhattan>(candidates, images, problem, points.size(), threads)
+                   : map_rows<2, Metric::manhattan>(candidates, images, problem, points.size(), threads);
+      break;
+    case Metric::chebyshev:
+      list = three ? map_rows<3, Metric::chebyshev>(candidates, images, problem, points.size(), threads)
+                   : map_rows<2, Metric::chebyshev>(candidates, images, problem, points.size(), threads);
+      break;
+  }
+  stats.grid_seconds += images_seconds;
+  stats.search_seconds += clock.lap();
+  return list;
+}
+
+}  // namespace horizon::detail

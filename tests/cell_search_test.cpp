@@ -1,0 +1,265 @@
+// Periodic cells of any shape (SearchOptions::cell): every backend against the cell oracle on
+// random cells, including nearly degenerate ones and horizons of several cells; closed-form
+// image counts; the orthorhombic box's answer; and the errors of bad cells.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "horizon/error.hpp"
+#include "horizon/generate.hpp"
+#include "horizon/oracle.hpp"
+#include "horizon/radii.hpp"
+#include "horizon/search.hpp"
+
+namespace horizon {
+namespace {
+
+std::vector<Backend> cpu_and_gpu() {
+  std::vector<Backend> backends{Backend::serial, Backend::automatic};
+  if (backend_available(Backend::openmp)) backends.push_back(Backend::openmp);
+  if (backend_available(Backend::cuda)) backends.push_back(Backend::cuda);
+  return backends;
+}
+
+/// Where two lists first differ: the row, and the entries (j and shift) from the first difference on.
+std::string first_difference(const NeighborList& got, const NeighborList& expected) {
+  if (got == expected) return "equal";
+  auto entries = [](const NeighborList& list, std::size_t i) {
+    std::vector<std::string> text;
+    const std::size_t dims = list.indices().empty() ? 0 : list.shifts().size() / list.indices().size();
+    for (auto e = list.offsets()[i]; e < list.offsets()[i + 1]; ++e) {
+      std::string entry = std::to_string(list.indices()[e]);
+      for (std::size_t a = 0; a < dims; ++a) entry += (a ? "," : "(") + std::to_string(list.shifts()[e * dims + a]);
+      text.push_back(entry + (dims ? ")" : ""));
+    }
+    return text;
+  };
+  for (std::size_t i = 0; i < std::min(got.size(), expected.size()); ++i) {
+    const auto g = entries(got, i), x = entries(expected, i);
+    if (g == x) continue;
+    std::size_t at = 0;
+    while (at < g.size() && at < x.size() && g[at] == x[at]) ++at;
+    std::string text = "row " + std::to_string(i) + " from entry " + std::to_string(at) + " of " +
+                       std::to_string(g.size()) + " (expected " + std::to_string(x.size()) + "):\n got";
+    for (std::size_t k = at; k < std::min(g.size(), at + 6); ++k) text += " " + g[k];
+    text += "\n expected";
+    for (std::size_t k = at; k < std::min(x.size(), at + 6); ++k) text += " " + x[k];
+    return text;
+  }
+  return got.size() != expected.size() ? "row counts differ" : "the ids agree; distances or vectors differ";
+}
+
+/// A random right-handed cell: each vector of length 1-3, at least `min_angle` radians from the
+/// plane of the other two (small: nearly degenerate), possibly rotated; random pbc.
+Cell random_cell(std::mt19937_64& rng, int dims, double min_angle) {
+  std::uniform_real_distribution<double> unit(-1, 1), length(1, 3);
+  for (;;) {
+    Cell cell;
+    for (int k = 0; k < dims; ++k) {
+      double norm = 0;
+      for (int a = 0; a < dims; ++a) norm += (cell.vectors[k][a] = unit(rng)) * cell.vectors[k][a];
+      const double scale = length(rng) / std::sqrt(norm);
+      for (int a = 0; a < dims; ++a) cell.vectors[k][a] *= scale;
+      cell.pbc[k] = rng() % 4 != 0;
+    }
+    if (dims == 2) cell.vectors[2][2] = 1;
+    const auto& v = cell.vectors;
+    const double cx = v[1][1] * v[2][2] - v[1][2] * v[2][1], cy = v[1][2] * v[2][0] - v[1][0] * v[2][2],
+                 cz = v[1][0] * v[2][1] - v[1][1] * v[2][0];
+    const double det = v[0][0] * cx + v[0][1] * cy + v[0][2] * cz;
+    if (det < 0) std::swap(cell.vectors[0], cell.vectors[1]);  // right-handed
+    // The angle between each vector and the other two's plane: sin = |det| / (|a| |b x c|).
+    bool flat_enough = std::fabs(det) > 0;
+    for (int k = 0; k < dims && flat_enough; ++k) {
+      const auto& a = v[k];
+      const auto& b = v[(k + 1) % 3];
+      const auto& c = v[(k + 2) % 3];
+      const double n[3] = {b[1] * c[2] - b[2] * c[1], b[2] * c[0] - b[0] * c[2], b[0] * c[1] - b[1] * c[0]};
+      const double sine = std::fabs(det) / (std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]) *
+                                            std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]));
+      flat_enough = std::asin(std::min(1.0, sine)) >= min_angle;
+    }
+    if (flat_enough) return cell;
+  }
+}
+
+/// Points inside and around the cell (up to two cells out), some coincident.
+PointSet points_around(const Cell& cell, int dims, std::size_t n, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> fraction(-2, 3);
+  PointSet points(dims, {});
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i > 0 && rng() % 10 == 0) {  // a copy of the last point
+      for (int a = 0; a < dims; ++a) points.xyz.push_back(points.xyz[(i - 1) * dims + a]);
+      continue;
+    }
+    double f[3];
+    for (int k = 0; k < dims; ++k) f[k] = fraction(rng);
+    for (int a = 0; a < dims; ++a) {
+      double x = 0;
+      for (int k = 0; k < dims; ++k) x += f[k] * cell.vectors[k][a];
+      points.xyz.push_back(x);
+    }
+  }
+  return points;
+}
+
+TEST(CellSearch, RandomCellsEqualTheOracleOnEveryBackend) {
+  std::mt19937_64 rng(58);
+  const Metric metrics[] = {Metric::euclidean, Metric::euclidean, Metric::manhattan, Metric::chebyshev};
+  for (int problem = 0; problem < 60; ++problem) {
+    const int dims = problem % 3 == 0 ? 2 : 3;
+    const Cell cell = random_cell(rng, dims, problem % 5 == 0 ? 0.05 : 0.3);
+    const PointSet points = points_around(cell, dims, 1 + rng() % (dims == 3 ? 40 : 60), rng);
+    SearchOptions options;
+    options.cell = cell;
+    options.metric = metrics[problem % 4];
+    options.horizon = std::uniform_real_distribution<double>(0.3, dims == 3 ? 4.0 : 6.0)(rng);  // up to a few cells
+    options.half = problem % 2 == 1;
+    options.self_interaction = problem % 7 == 0;
+    options.outputs = {true, true, true};
+    options.cells_per_horizon = 1 + problem % 2;
+    const NeighborList expected = brute_force(points.view(), options);
+    for (Backend backend : cpu_and_gpu()) {
+      options.backend = backend;
+      const NeighborList got = search(points.view(), options);
+      EXPECT_TRUE(got == expected) << first_difference(got, expected) << "\nproblem " << problem << " on " << backend_name(backend) << ", " << dims << "-D, horizon " << options.horizon;
+    }
+  }
+}
+
+TEST(CellSearch, PerAtomRadiiEqualTheOracle) {
+  std::mt19937_64 rng(5858);
+  for (int problem = 0; problem < 20; ++problem) {
+    const Cell cell = random_cell(rng, 3, 0.3);
+    const PointSet points = points_around(cell, 3, 2 + rng() % 30, rng);
+    std::vector<double> radii(points.size());
+    for (double& r : radii) r = std::uniform_real_distribution<double>(0.2, 1.5)(rng);
+    SearchOptions options;
+    options.cell = cell;
+    options.half = problem % 2 == 0;
+    options.outputs.distances = true;
+    const RadiusRule rule = problem % 3 == 0 ? RadiusRule::max : RadiusRule::sum;
+    const NeighborList expected = brute_force_with_radii(points.view(), radii, rule, options);
+    for (Backend backend : cpu_and_gpu()) {
+      options.backend = backend;
+      const NeighborList got = search_with_radii(points.view(), radii, rule, options);
+      EXPECT_TRUE(got == expected) << first_difference(got, expected) << "\nproblem " << problem;
+    }
+  }
+}
+
+TEST(CellSearch, OneAtomInASmallCellFindsItsImagesShellByShell) {
+  // Simple cubic, a = 1, horizon 1.5: the 6 images at distance 1 and the 12 at sqrt(2) (sqrt(3)
+  // = 1.73 is out); with horizon 2.1 also the 8 at sqrt(3) and the 6 at 2.
+  for (Backend backend : cpu_and_gpu()) {
+    SearchOptions options;
+    options.backend = backend;
+    options.cell = Cell::orthorhombic({1, 1, 1});
+    options.outputs = {true, true, true};
+    const PointSet atom(3, {0.25, 0.5, 0.75});
+    options.horizon = 1.5;
+    NeighborList list = search(atom.view(), options);
+    ASSERT_EQ(list.total(), 18);
+    int ones = 0;
+    for (std::int64_t e = 0; e < list.total(); ++e) {
+      EXPECT_EQ(list.indices()[e], 0);
+      double norm2 = 0;
+      for (int a = 0; a < 3; ++a) {
+        EXPECT_EQ(list.vectors()[e * 3 + a], static_cast<double>(list.shifts()[e * 3 + a]));
+        norm2 += list.vectors()[e * 3 + a] * list.vectors()[e * 3 + a];
+      }
+      EXPECT_DOUBLE_EQ(list.distances()[e], std::sqrt(norm2));
+      ones += list.distances()[e] == 1.0;
+    }
+    EXPECT_EQ(ones, 6);
+    EXPECT_EQ(std::vector<std::int32_t>(list.shifts().begin(), list.shifts().begin() + 3),
+              (std::vector<std::int32_t>{-1, -1, 0}));  // the first shift in lexicographic order
+    options.horizon = 2.1;
+    EXPECT_EQ(search(atom.view(), options).total(), 6 + 12 + 8 + 6);
+    options.half = true;
+    EXPECT_EQ(search(atom.view(), options).total(), (6 + 12 + 8 + 6) / 2);
+    options.self_interaction = true;
+    list = search(atom.view(), options);
+    EXPECT_EQ(list.total(), 16 + 1);
+  }
+}
+
+TEST(CellSearch, AnOrthorhombicCellGivesTheBoxsIds) {
+  const PointSet points = random_cloud(3000, 3, 11, 10.0);
+  SearchOptions box;
+  box.horizon = 1.2;
+  box.box = {10, 10, 10};
+  SearchOptions cell = box;
+  cell.box = {0, 0, 0};
+  cell.cell = Cell::orthorhombic({10, 10, 10});
+  for (bool half : {false, true}) {
+    box.half = cell.half = half;
+    const NeighborList expected = search(points.view(), box);
+    const NeighborList got = search(points.view(), cell);
+    EXPECT_EQ(got.offsets(), expected.offsets());
+    EXPECT_EQ(got.indices(), expected.indices());
+    cell.outputs.shifts = true;  // the same with shifts, and with the box as the cell
+    box.outputs.shifts = true;
+    EXPECT_EQ(search(points.view(), box), search(points.view(), cell));
+    cell.outputs.shifts = box.outputs.shifts = false;
+  }
+}
+
+TEST(CellSearch, OpenAxesIgnoreTheirVectors) {
+  // A slab: periodic in a and b; whatever c says (zero, tilted) the list is the same.
+  Cell slab;
+  slab.vectors = {{{3, 0, 0}, {1, 2.5, 0}, {0, 0, 0}}};
+  slab.pbc = {true, true, false};
+  const PointSet points = random_cloud(50, 3, 7, 4.0);
+  SearchOptions options;
+  options.horizon = 2.5;
+  options.cell = slab;
+  options.outputs = {true, true, true};
+  const NeighborList expected = search(points.view(), options);
+  options.cell.vectors[2] = {0.5, -1, 7};
+  const NeighborList tilted = search(points.view(), options), oracle = brute_force(points.view(), options);
+  EXPECT_TRUE(tilted == expected) << first_difference(tilted, expected);
+  EXPECT_TRUE(oracle == expected) << first_difference(oracle, expected);
+}
+
+TEST(CellSearch, BadCellsAreClearErrors) {
+  const PointSet points = random_cloud(10, 3, 1, 1.0);
+  auto message = [&](const Cell& cell, const std::string& expected, SearchOptions options = {}) {
+    options.horizon = 0.5;
+    options.cell = cell;
+    try {
+      search(points.view(), options);
+      ADD_FAILURE() << "no error; expected " << expected;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  };
+  Cell cell = Cell::orthorhombic({1, 1, 1});
+  cell.vectors[1] = {2, 0, 0};  // parallel to a
+  message(cell, "linearly dependent");
+  cell = Cell::orthorhombic({1, 1, 1});
+  std::swap(cell.vectors[0], cell.vectors[1]);
+  message(cell, "left-handed");
+  cell = Cell::orthorhombic({1, 1, 1});
+  cell.vectors[2] = {0, 0, 0};
+  message(cell, "vector c has zero length but its axis is periodic");
+  cell = Cell::orthorhombic({1, 1, 1});
+  cell.vectors[1][2] = std::nan("");
+  message(cell, "vector b has a non-finite component 2");
+  SearchOptions with_box;
+  with_box.box = {1, 1, 1};
+  message(Cell::orthorhombic({1, 1, 1}), "either a box or a cell", with_box);
+  SearchOptions queries;
+  queries.queries = 3;
+  message(Cell::orthorhombic({1, 1, 1}), "queries", queries);
+  const PointSet plane = random_cloud(10, 2, 1, 1.0);
+  SearchOptions options;
+  options.horizon = 0.5;
+  options.cell = Cell::orthorhombic({1, 1, 1});
+  EXPECT_THROW(search(plane.view(), options), Error);  // pbc on c for 2-D points
+}
+
+}  // namespace
+}  // namespace horizon
