@@ -10,7 +10,7 @@ PYTHON ?= /usr/bin/python3  # Debian's, with Debian's Sphinx, pybind11 and NumPy
 PACKAGES = build-essential cmake libgtest-dev libbenchmark-dev libcli11-dev libfmt-dev \
            nlohmann-json3-dev libnanoflann-dev libhwy-dev libopenmpi-dev openmpi-bin \
            python3-dev python3-pybind11 pybind11-dev python3-numpy python3-scipy python3-pytest \
-           python3-venv python3-pip python3-matplotlib python3-meshio \
+           python3-venv python3-pip python3-matplotlib python3-meshio python3-ase \
            doxygen python3-sphinx furo python3-myst-parser python3-breathe gfortran pkg-config
 
 .PHONY: deps build run test test-sanitize docs package wheel device-deps fuzz bench clean

@@ -20,7 +20,7 @@ from . import _horizon
 
 __version__ = _horizon.__version__  # the C++ library's, set by CMake's project(VERSION)
 
-__all__ = ["__version__", "search", "warm_up", "NeighborList", "DeviceNeighborList", "VerletList", "load", "lattice", "random_cloud", "clustered_cloud", "backend_available"]
+__all__ = ["__version__", "search", "neighbor_list", "primitive_neighbor_list", "warm_up", "NeighborList", "DeviceNeighborList", "VerletList", "load", "lattice", "random_cloud", "clustered_cloud", "backend_available"]
 
 
 class NeighborList:
@@ -28,6 +28,9 @@ class NeighborList:
     indices[offsets[i]:offsets[i + 1]]. offsets is int64 (N + 1), indices int32; when the list
     comes from search() both are read-only views of horizon's buffers (no copy)."""
 
+    shifts = None          #: (total, dims) int32: each entry's periodic shift S, when search(shifts=True)
+    distances = None       #: (total,) float64: each entry's distance |D|, when search(distances=True)
+    vectors = None         #: (total, dims) float64: each entry's D = x_j + S . cell - x_i, when search(vectors=True)
     backend = None         #: the backend that built the list ("serial", "openmp", "cuda"); None if not searched
     threads = None         #: the threads it used
     backend_choice = None  #: why that backend and thread count (backend="auto" says what it went by)
@@ -293,9 +296,30 @@ def _periods(box, dims):
     return periods + [0.0] * (3 - len(periods))
 
 
+def _cell_and_pbc(cell, pbc, dims):
+    """cell ((dims, dims) or (3, 3) array-like, or None) and pbc as the 3 x 3 rows and 3 flags
+    horizon takes."""
+    if cell is None:
+        if pbc is not None:
+            raise ValueError("pbc= needs cell=")
+        return None, [False, False, False]
+    matrix = np.asarray(cell, dtype=np.float64)
+    if matrix.shape not in ((dims, dims), (3, 3)):
+        raise ValueError(f"cell must be a ({dims}, {dims}) or (3, 3) matrix (rows: the cell vectors), not shape {matrix.shape}")
+    rows = np.zeros((3, 3))
+    rows[:matrix.shape[0], :matrix.shape[1]] = matrix
+    flags = [True] * dims if pbc is None else [bool(f) for f in np.atleast_1d(pbc)]
+    if len(flags) == 1:
+        flags *= dims
+    if len(flags) not in (dims, 3) or any(flags[dims:]):
+        raise ValueError(f"pbc must give a flag for each of the {dims} cell vectors, not {pbc!r}")
+    return rows.tolist(), flags + [False] * (3 - len(flags))
+
+
 def search(points, horizon=None, *, backend="auto", metric="l2", half=False, sort_rows=True, threads=0, device=0,
            devices=None, cells_per_horizon=1, box=None, references=None, radii=None, radius_rule="gather",
-           gpu_max_memory=0):
+           gpu_max_memory=0, cell=None, pbc=None, self_interaction=False, shifts=False, distances=False,
+           vectors=False):
     """The neighbour list of `points` ((N, 2) or (N, 3) array-like, float64 or float32, any
     order): row i holds every j != i with distance(i, j) < horizon.
 
@@ -313,7 +337,14 @@ def search(points, horizon=None, *, backend="auto", metric="l2", half=False, sor
     "scatter" (d < r_j), "max" or "min" (d < max/min(r_i, r_j); the only rules with half=True);
     with references, one radius per query and the gather rule only;
     gpu_max_memory: most bytes of GPU memory the search may take (0: what is free), for a solver
-    that keeps its own arrays on the same GPU.
+    that keeps its own arrays on the same GPU;
+    cell: a periodic cell of any shape instead of box, its rows the cell vectors ((3, 3), or (2, 2)
+    for 2-D points), with pbc (a bool per cell vector; default all True): points anywhere, any
+    horizon however small the cell; row i lists every image of every j within the horizon, each
+    an entry of its own, ordered by j, then by shift (radius_rule="sum" is ASE's r_i + r_j);
+    self_interaction: i is its own neighbour at shift 0;
+    shifts, distances, vectors: per-entry arrays on the list (nl.shifts, nl.distances,
+    nl.vectors: S, |D| and D = x_j + S . cell - x_i), computed as each pair is found.
 
     A CUDA array (__cuda_array_interface__: CuPy, PyTorch; float64, C-contiguous) is searched
     where it lies, on its GPU and stream, and gives a DeviceNeighborList (backend, threads and
@@ -324,8 +355,9 @@ def search(points, horizon=None, *, backend="auto", metric="l2", half=False, sor
     if hasattr(points, "__cuda_array_interface__"):
         if radii is not None:
             raise ValueError("radii= is not supported for GPU arrays yet: pass host arrays (backend='cuda' still runs on the GPU)")
-        if box is not None or references is not None:
-            raise ValueError("box= and references= are not supported for GPU arrays yet: pass host arrays")
+        if box is not None or references is not None or cell is not None or shifts or distances or vectors:
+            raise ValueError("box=, references=, cell= and the per-entry outputs are not supported for GPU arrays "
+                             "yet: pass host arrays (backend='cuda' still runs on the GPU)")
         return _search_on_gpu(points, horizon, metric, half, sort_rows, cells_per_horizon)
     array = _host_points(points)
     reference_array = None if references is None else _host_points(references, "references")
@@ -339,11 +371,19 @@ def search(points, horizon=None, *, backend="auto", metric="l2", half=False, sor
     owned = _horizon.search(array, 0.0 if horizon is None else float(horizon), metric, bool(half), bool(sort_rows),
                             backend, int(threads), int(device), [int(d) for d in (devices or [])],
                             int(cells_per_horizon), _periods(box, array.shape[1]), reference_array, radius_array,
-                            str(radius_rule), _byte_count(gpu_max_memory, "gpu_max_memory"))
+                            str(radius_rule), _byte_count(gpu_max_memory, "gpu_max_memory"),
+                            *_cell_and_pbc(cell, pbc, array.shape[1]), bool(self_interaction),
+                            [bool(shifts), bool(distances), bool(vectors)])
     offsets, indices = owned.offsets, owned.indices
     offsets.flags.writeable = False
     indices.flags.writeable = False
     nl = NeighborList(offsets, indices, half, None if reference_array is None else len(reference_array))
+    dims = array.shape[1]
+    for name, wanted, width in (("shifts", shifts, dims), ("distances", distances, 1), ("vectors", vectors, dims)):
+        if wanted:
+            values = getattr(owned, name)
+            values.flags.writeable = False
+            setattr(nl, name, values.reshape(-1, width) if width > 1 else values)
     nl.backend, nl.threads, nl.backend_choice = owned.backend, owned.threads, owned.choice
     return nl
 
@@ -396,3 +436,6 @@ def clustered_cloud(count, clusters=64, sigma=1.0, dims=3, seed=1, side=10.0):
 def backend_available(name):
     """Whether a backend ("serial", "openmp", "cuda") is built and has hardware here."""
     return _horizon.backend_available(name)
+
+
+from .atomistic import neighbor_list, primitive_neighbor_list  # noqa: E402 (they call search())

@@ -78,9 +78,14 @@ OwnedList search(py::array points, double horizon, const std::string& metric, bo
                  const std::string& backend, int threads, int device, const std::vector<int>& devices,
                  int cells_per_horizon, const std::array<double, 3>& box, std::optional<py::array> references,
                  std::optional<py::array_t<double, py::array::c_style | py::array::forcecast>> radii,
-                 const std::string& radius_rule, std::size_t gpu_max_memory) {
+                 const std::string& radius_rule, std::size_t gpu_max_memory,
+                 std::optional<std::array<std::array<double, 3>, 3>> cell, const std::array<bool, 3>& pbc,
+                 bool self_interaction, const std::array<bool, 3>& outputs) {
   const horizon::PointView view = point_view(points);
   horizon::SearchOptions options = options_of(horizon, metric, half, sort_rows, cells_per_horizon);
+  if (cell) options.cell = horizon::Cell{*cell, pbc};
+  options.self_interaction = self_interaction;
+  options.outputs = horizon::PairOutputs{outputs[0], outputs[1], outputs[2]};
   options.backend = horizon::parse_backend(backend);
   options.threads = threads;
   options.device = device;
@@ -214,6 +219,18 @@ PYBIND11_MODULE(_horizon, m) {
         const auto& list = self.cast<const OwnedList&>().list;
         return view(list.indices().data(), list.indices().size(), self);
       })
+      .def_property_readonly("shifts", [](py::object self) {
+        const auto& list = self.cast<const OwnedList&>().list;
+        return view(list.shifts().data(), list.shifts().size(), self);
+      })
+      .def_property_readonly("distances", [](py::object self) {
+        const auto& list = self.cast<const OwnedList&>().list;
+        return view(list.distances().data(), list.distances().size(), self);
+      })
+      .def_property_readonly("vectors", [](py::object self) {
+        const auto& list = self.cast<const OwnedList&>().list;
+        return view(list.vectors().data(), list.vectors().size(), self);
+      })
       .def_property_readonly("backend", [](const OwnedList& l) { return std::string(horizon::backend_name(l.stats.backend)); })
       .def_property_readonly("threads", [](const OwnedList& l) { return l.stats.threads; })
       .def_property_readonly("choice", [](const OwnedList& l) { return l.stats.choice; });
@@ -255,7 +272,8 @@ PYBIND11_MODULE(_horizon, m) {
   m.def("search", &search, py::arg("points"), py::arg("horizon"), py::arg("metric"), py::arg("half"),
         py::arg("sort_rows"), py::arg("backend"), py::arg("threads"), py::arg("device"), py::arg("devices"),
         py::arg("cells_per_horizon"), py::arg("box"), py::arg("references"), py::arg("radii"),
-        py::arg("radius_rule"), py::arg("gpu_max_memory"));
+        py::arg("radius_rule"), py::arg("gpu_max_memory"), py::arg("cell"), py::arg("pbc"),
+        py::arg("self_interaction"), py::arg("outputs"));
   m.def("build_verlet", &build_verlet, py::arg("points"), py::arg("horizon"), py::arg("skin"), py::arg("metric"),
         py::arg("half"), py::arg("sort_rows"), py::arg("backend"), py::arg("threads"), py::arg("device"),
         py::arg("cells_per_horizon"));
