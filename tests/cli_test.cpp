@@ -308,4 +308,47 @@ TEST_F(CliTest, GpuMaxMemoryIsASize) {
   expect_refused("search lattice:30 --horizon 1.005 --gpu-max-memory -2G", "--gpu-max-memory -2G: expected a size");
 }
 
+
+TEST_F(CliTest, StructureFilesGiveTheCellAndGeometry) {
+  // One atom in a simple cubic cell of side 1, horizon 1.5: the 6 images at 1 and the 12 at sqrt(2).
+  write("sc.extxyz", "1\nLattice=\"1 0 0 0 1 0 0 0 1\" Properties=species:S:1:pos:R:3 pbc=\"T T T\"\nH 0.2 0.3 0.4\n");
+  const Result sc = run("search sc.extxyz --horizon 1.5 --outputs d,D,S --out sc --json");
+  ASSERT_EQ(sc.status, 0) << sc.output;
+  EXPECT_OUTPUT(sc, "\"neighbors\":18");
+  EXPECT_OUTPUT(sc, "sc.shifts.npy");
+  EXPECT_TRUE(exists("sc.distances.npy") && exists("sc.vectors.npy"));
+  EXPECT_OUTPUT(run("search sc.extxyz --horizon 1.5 --pbc 1,1,0 --json"), "\"neighbors\":8");  // a slab: 4 + 4
+  EXPECT_OUTPUT(run("search sc.extxyz --horizon 1.5 --self-interaction --half --json"), "\"neighbors\":10");
+  // A LAMMPS data file with a tilted box: 2 atoms, the same count as the equivalent --cell.
+  write("data.tilted", "two atoms\n\n2 atoms\n1 atom types\n0 2 xlo xhi\n0 2 ylo yhi\n0 3 zlo zhi\n0.5 0 0 xy xz yz\n\n"
+                       "Atoms # atomic\n\n2 1 1.0 1.0 1.0\n1 1 0.1 0.2 0.3\n");
+  write("two.csv", "0.1 0.2 0.3\n1.0 1.0 1.0\n");
+  const Result data = run("search data.tilted --horizon 2.2 --json");
+  ASSERT_EQ(data.status, 0) << data.output;
+  const Result same = run("search two.csv --horizon 2.2 --cell \"2 0 0 0.5 2 0 0 0 3\" --json");
+  const auto count = [](const std::string& json) { return json.substr(json.find("\"neighbors\"")).substr(0, 20); };
+  EXPECT_EQ(count(data.output), count(same.output));
+}
+
+TEST_F(CliTest, BadStructuresAndCellsAreRefusedWithTheirLineAndKey) {
+  write("short.extxyz", "1\nLattice=\"1 0 0 0 1 0 0 0\"\nH 0 0 0\n");
+  expect_refused("search short.extxyz --horizon 1", "short.extxyz:2: key Lattice: expected 9 numbers");
+  write("few.extxyz", "3\nLattice=\"1 0 0 0 1 0 0 0 1\"\nH 0 0 0\nH 0 0 0.5\n");
+  expect_refused("search few.extxyz --horizon 1", "declares 3 atoms but 2 atom lines follow");
+  write("cols.extxyz", "1\nProperties=species:S:1:pos:R:3:charge:R:1\nH 0 0 0\n");
+  expect_refused("search cols.extxyz --horizon 1", "cols.extxyz:3: expected 5 columns");
+  write("flat.extxyz", "1\nLattice=\"1 0 0 0 1 0 0 0 0\" pbc=\"T T T\"\nH 0 0 0\n");
+  expect_refused("search flat.extxyz --horizon 1", "vector c has zero length but its axis is periodic");
+  write("data.noatoms", "x\n\n0 2 xlo xhi\n0 2 ylo yhi\n0 2 zlo zhi\n\nAtoms\n\n");
+  expect_refused("search data.noatoms --horizon 1", "no 'N atoms' line");
+  write("data.missing", "x\n\n2 atoms\n0 2 xlo xhi\n0 2 ylo yhi\n0 2 zlo zhi\n\nAtoms # atomic\n\n1 1 0 0 0\n");
+  expect_refused("search data.missing --horizon 1", "declares 2 atoms but the Atoms section has 1");
+  write("p.csv", "0 0 0\n0.5 0.5 0.5\n");
+  expect_refused("search p.csv --horizon 1 --cell \"0 1 0 1 0 0 0 0 1\"", "left-handed");
+  expect_refused("search p.csv --horizon 1 --cell \"1 0 0 0 1 0 0 0\"", "--cell: expected 9 numbers");
+  expect_refused("search p.csv --horizon 1 --pbc 1,0,1", "--pbc needs --cell");
+  expect_refused("search p.csv --horizon 1 --outputs d,x", "'x' is not one of S");
+  expect_refused("search p.csv --horizon 1 --outputs d --format csv --out list", "written as .npy files, not csv");
+}
+
 }  // namespace

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "horizon/io.hpp"
 #include "horizon/points.hpp"
 #include "horizon/search.hpp"
 
@@ -24,11 +25,15 @@ struct SearchArgs {
   std::string bond_filters;                     // JSON file of rectangles and disks that cut bonds
   std::string blocks, block_pairs;              // a block id per point; the block pairs that bond
   std::string radii, radius_rule = "gather";    // a radius per point, and how a pair combines two
+  std::string cell, pbc;                        // a periodic cell "ax ay az bx by bz cx cy cz", its pbc "1,1,0"
+  std::string outputs;                          // per-entry geometry: letters of S, d, D ("d,D,S")
   double horizon = 0;
   int threads = 0, cells_per_horizon = 1, device = 0;
   bool half = false, unsorted = false, json = false, quiet = false, vtk_bonds = false;
+  bool self_interaction = false;
 };
-SearchOptions search_options(const SearchArgs& args);
+/// The options of `args`; `file_cell` (a structure file's cell and pbc) unless --cell says otherwise.
+SearchOptions search_options(const SearchArgs& args, const Cell& file_cell = {});
 /// Throws when an output would overwrite the input.
 void check_output(const SearchArgs& args);
 
@@ -41,6 +46,8 @@ struct VerifyFailed {};
 
 /// Points from a file, or a built-in problem: `lattice:N` (N^3 points, side 10).
 PointSet load_input(const std::string& input);
+/// Points, and the cell and pbc of an atomistic structure file (extended XYZ, LAMMPS data).
+Structure load_structure(const std::string& input);
 
 /// Progress lines on stderr, only when it is a terminal and not --quiet.
 class Progress {

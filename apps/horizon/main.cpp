@@ -31,6 +31,11 @@ PointSet load_input(const std::string& input) {
   return read_points(input);
 }
 
+Structure load_structure(const std::string& input) {
+  if (input.rfind("lattice:", 0) != 0 && is_structure_file(input)) return read_structure(input);
+  return Structure{load_input(input), Cell{}};
+}
+
 Progress::Progress(bool quiet) : on_(!quiet && ::isatty(STDERR_FILENO)) {}
 
 void Progress::say(const std::string& what) const {

@@ -23,13 +23,18 @@ namespace {
 
 void run_search(const SearchArgs& args) {
 #if defined(HORIZON_WITH_MPI)
-  if (distributed_requested(args)) return run_distributed(args);
+  if (distributed_requested(args)) {
+    if (!args.cell.empty() || !args.outputs.empty() || args.self_interaction || is_structure_file(args.input))
+      throw Error("--cell, --outputs, --self-interaction and structure files: not supported under mpirun yet");
+    return run_distributed(args);
+  }
 #endif
   const Progress progress(args.quiet);
   check_output(args);
   Stopwatch clock;
   progress.say("reading " + args.input);
-  PointSet references = load_input(args.input);
+  Structure input = load_structure(args.input);
+  PointSet& references = input.points;
   if (!args.blocks.empty()) references.blocks = read_blocks(args.blocks, references.size());
   const PointSet queries = args.queries.empty() ? PointSet{} : load_input(args.queries);
   const PointSet& points = args.queries.empty() ? references : queries;  // the rows
@@ -37,7 +42,7 @@ void run_search(const SearchArgs& args) {
   const std::vector<double> radii = args.radii.empty() ? std::vector<double>{} : read_radii(args.radii, points.size(), args.queries.empty() ? "points" : "queries");
   const double read_seconds = clock.lap();
 
-  SearchOptions options = search_options(args);
+  SearchOptions options = search_options(args, input.cell);
   const RadiusRule radius_rule = parse_radius_rule(args.radius_rule);
   if (!radii.empty()) {
     if (!args.queries.empty() && radius_rule != RadiusRule::gather)
@@ -47,8 +52,10 @@ void run_search(const SearchArgs& args) {
   }
   const std::vector<BondFilter> filters =
       args.bond_filters.empty() ? std::vector<BondFilter>{} : read_bond_filters(args.bond_filters);
-  if (!filters.empty() && (options.box[0] > 0 || options.box[1] > 0 || options.box[2] > 0))
-    throw Error("--bond-filters with --box: bonds across the periodic faces have no single segment; not supported");
+  if (!filters.empty() && (options.box[0] > 0 || options.box[1] > 0 || options.box[2] > 0 || options.cell.periodic()))
+    throw Error("--bond-filters with --box or --cell: bonds across the periodic faces have no single segment; not supported");
+  if ((!filters.empty() || !args.block_pairs.empty()) && options.outputs.any())
+    throw Error("--outputs with --bond-filters or --block-pairs: not supported (the filters keep ids only)");
   const BlockPairs block_pairs = args.block_pairs.empty() ? BlockPairs{} : BlockPairs::parse(args.block_pairs);
   if (!args.block_pairs.empty() && references.blocks.empty())
     throw Error("--block-pairs needs a block per point: --blocks FILE, or a Peridigm input (x y z block volume)");
@@ -67,7 +74,8 @@ void run_search(const SearchArgs& args) {
       list = args.queries.empty() ? search(references.view(), options, &stats)
                                   : search(queries.view(), references.view(), options, &stats);
   } catch (const ListTooLarge& too_large) {
-    const bool periodic = options.box[0] > 0 || options.box[1] > 0 || options.box[2] > 0;
+    const bool periodic = options.box[0] > 0 || options.box[1] > 0 || options.box[2] > 0 || options.cell.periodic() ||
+                          options.outputs.any() || options.self_interaction;
     const bool plain = args.queries.empty() && radii.empty() && filters.empty() && block_pairs.pairs.empty() && args.vtk.empty() && !periodic;
     if (args.out.empty() || args.format != "npy" || !plain) throw;
     // It fits on disk: built again in batches of half the memory allowed, each appended to the files.
@@ -133,6 +141,10 @@ void run_search(const SearchArgs& args) {
     };
     if (streamed >= 0) report["written_in_batches"] = true;
     if (!radii.empty()) report["radius_rule"] = radius_rule_name(radius_rule);
+    if (options.cell.periodic()) {
+      report["cell"] = options.cell.vectors;
+      report["pbc"] = options.cell.pbc;
+    }
     if (!filters.empty()) report["bond_filters"] = filters.size();
     if (!block_pairs.pairs.empty()) report["block_pairs"] = block_pairs.pairs.size();
     if (!filters.empty() || !block_pairs.pairs.empty()) report["bonds_cut"] = unfiltered - list.total();
@@ -233,6 +245,68 @@ std::array<double, 3> parse_box(const std::string& text) {
   return box;
 }
 
+/// --cell "ax ay az bx by bz cx cy cz" (commas or spaces; 4 numbers for a 2-D cell) and --pbc
+/// 1,1,0 (default: every axis periodic), over `file_cell` (a structure file's); --outputs letters.
+Cell parse_cell(const std::string& text, const std::string& pbc, Cell cell) {
+  if (!text.empty()) {
+    std::vector<double> values;
+    std::string field;
+    for (std::size_t at = 0; at <= text.size(); ++at) {
+      const bool separator = at == text.size() || text[at] == ',' || std::isspace(static_cast<unsigned char>(text[at]));
+      if (!separator) {
+        field += text[at];
+        continue;
+      }
+      if (field.empty()) continue;
+      std::size_t used = 0;
+      double value = 0;
+      try {
+        value = std::stod(field, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used == 0 || used != field.size())
+        throw Error("--cell: '" + field + "' is not a number (expected \"ax ay az bx by bz cx cy cz\")");
+      values.push_back(value);
+      field.clear();
+    }
+    if (values.size() != 9 && values.size() != 4)
+      throw Error("--cell: expected 9 numbers (the vectors a, b, c) or 4 (a 2-D cell), found " + std::to_string(values.size()));
+    const int dims = values.size() == 9 ? 3 : 2;
+    cell = Cell{};
+    for (int k = 0; k < dims; ++k) {
+      for (int a = 0; a < dims; ++a) cell.vectors[k][a] = values[k * dims + a];
+      cell.pbc[k] = true;
+    }
+  }
+  if (!pbc.empty()) {
+    if (text.empty() && !cell.periodic() && cell.vectors == Cell{}.vectors) throw Error("--pbc needs --cell (or a structure file with a cell)");
+    std::size_t axis = 0;
+    for (std::size_t from = 0; from <= pbc.size(); ++axis) {
+      const std::size_t comma = std::min(pbc.find(',', from), pbc.size());
+      const std::string flag = pbc.substr(from, comma - from);
+      if (axis >= 3 || (flag != "0" && flag != "1"))
+        throw Error("--pbc " + pbc + ": expected a 0 or 1 per cell vector, such as 1,1,0");
+      cell.pbc[axis] = flag == "1";
+      from = comma + 1;
+    }
+    if (axis < 2) throw Error("--pbc " + pbc + ": expected a 0 or 1 per cell vector, such as 1,1,0");
+  }
+  return cell;
+}
+
+PairOutputs parse_outputs(const std::string& text) {
+  PairOutputs outputs;
+  for (char c : text) {
+    if (c == ',' || c == ' ') continue;
+    if (c == 'S') outputs.shifts = true;
+    else if (c == 'd') outputs.distances = true;
+    else if (c == 'D') outputs.vectors = true;
+    else throw Error(std::string("--outputs ") + text + ": '" + c + "' is not one of S (shifts), d (distances), D (vectors)");
+  }
+  return outputs;
+}
+
 /// --max-memory and --gpu-max-memory (`option`): bytes, or a number with K, M, G or T (powers
 /// of 1024).
 std::size_t parse_memory(const std::string& option, const std::string& text) {
@@ -255,7 +329,7 @@ std::size_t parse_memory(const std::string& option, const std::string& text) {
   return static_cast<std::size_t>(value * scale);
 }
 
-SearchOptions search_options(const SearchArgs& args) {
+SearchOptions search_options(const SearchArgs& args, const Cell& file_cell) {
   SearchOptions options;
   options.horizon = args.horizon;
   options.metric = parse_metric(args.metric);
@@ -269,6 +343,9 @@ SearchOptions search_options(const SearchArgs& args) {
   options.max_memory = parse_memory("--max-memory", args.max_memory);
   options.gpu_max_memory = parse_memory("--gpu-max-memory", args.gpu_max_memory);
   options.box = parse_box(args.box);
+  options.cell = parse_cell(args.cell, args.pbc, file_cell);
+  options.outputs = parse_outputs(args.outputs);
+  options.self_interaction = args.self_interaction;
   return options;
 }
 
@@ -287,7 +364,8 @@ void check_output(const SearchArgs& args) {
 void add_search(CLI::App& app) {
   auto args = std::make_shared<SearchArgs>();
   CLI::App* cmd = app.add_subcommand("search", "build the neighbour list of a point set");
-  cmd->add_option("input", args->input, "points: .npy, .csv/.xyz/.txt, Peridigm text, or lattice:N")
+  cmd->add_option("input", args->input,
+                  "points: .npy, .csv/.xyz/.txt, Peridigm text, extended XYZ, LAMMPS data, or lattice:N")
       ->required();
   CLI::Option* horizon = cmd->add_option("--horizon", args->horizon, "pairs closer than this are neighbours");
   CLI::Option* radii = cmd->add_option("--radii", args->radii,
@@ -311,6 +389,11 @@ void add_search(CLI::App& app) {
   cmd->add_flag("--half", args->half, "each pair once, in the row of the smaller id");
   cmd->add_option("--box", args->box,
                   "periodic box Lx,Ly[,Lz] (0: open axis): points in [0, L), nearest-image distance, horizon < L/2");
+  cmd->add_option("--cell", args->cell,
+                  "periodic cell of any shape: \"ax ay az bx by bz cx cy cz\" (a structure file's by default)");
+  cmd->add_option("--pbc", args->pbc, "which cell vectors are periodic, e.g. 1,1,0 (default: all)");
+  cmd->add_option("--outputs", args->outputs, "per-entry geometry: S (shifts), d (distances), D (vectors), e.g. d,D,S");
+  cmd->add_flag("--self-interaction", args->self_interaction, "with --cell or --outputs: each point is its own neighbour at shift 0");
   cmd->add_option("--queries", args->queries,
                   "query points (file or lattice:N): rows are the queries, ids index the input (the references)");
   cmd->add_flag("--unsorted", args->unsorted, "leave each family in search order (faster)");

@@ -36,6 +36,7 @@ struct PairOutputs {
   bool distances = false;
   bool vectors = false;
   bool any() const { return shifts || distances || vectors; }
+  friend bool operator==(const PairOutputs&, const PairOutputs&) = default;
 };
 
 }  // namespace horizon

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "horizon/cell.hpp"
 #include "horizon/neighbor_list.hpp"
 #include "horizon/points.hpp"
 #include "horizon/search.hpp"
@@ -18,6 +19,25 @@ namespace horizon {
 /// else text: one point per line, `x y [z]` separated by commas or spaces, `#` comments, an
 /// optional header line; or Peridigm's discretization `x y z block_id volume` (5 columns).
 PointSet read_points(const std::string& path);
+
+/// An atomistic system: its atoms' positions and its periodic cell (cell.hpp).
+struct Structure {
+  PointSet points;
+  Cell cell;
+};
+
+/// Whether read_structure reads `path`: `.extxyz`, `.xyz` whose first line is the atom count
+/// alone, and LAMMPS data files (`.data`, `.lmp`, `data.*`).
+bool is_structure_file(const std::string& path);
+
+/// An extended XYZ file of one frame (ASE's: the count, a comment line with Lattice="ax ay az
+/// bx by bz cx cy cz", pbc="T T F" and Properties=species:S:1:pos:R:3..., one line per atom;
+/// pbc defaults to T T T with a Lattice, F F F without), or a LAMMPS data file (the header's
+/// "N atoms", "xlo xhi", ..., "xy xz yz"; the Atoms section of the atomic, charge, molecular,
+/// bond, angle or full style, named after "Atoms #"; point k is the atom of the k-th smallest
+/// id; image flags are ignored; all three axes periodic, LAMMPS's default boundary). Errors
+/// name the file, the line and the key.
+Structure read_structure(const std::string& path);
 
 /// A block id per point (Peridigm's blocks, block_filter.hpp): `.npy` of int32/int64 (N), or
 /// text with one integer per line. Error naming the file (and line) unless there are `points`
@@ -34,8 +54,10 @@ void write_points(const std::string& path, const PointSet& points);
 
 enum class ListFormat { npy, csv };
 
-/// npy: PREFIX.offsets.npy (int64, N+1) and PREFIX.indices.npy (int32); csv: PREFIX.csv with
-/// one `i,j` row per entry. Returns the paths written, comma-separated.
+/// npy: PREFIX.offsets.npy (int64, N+1) and PREFIX.indices.npy (int32), and the geometry the
+/// list carries: PREFIX.shifts.npy (int32, M x dims), PREFIX.distances.npy (float64, M),
+/// PREFIX.vectors.npy (float64, M x dims); csv: PREFIX.csv with one `i,j` row per entry (no
+/// geometry). Returns the paths written, comma-separated.
 std::string write_neighbor_list(const std::string& prefix, const NeighborList& list,
                                 ListFormat format);
 

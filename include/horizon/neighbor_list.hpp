@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "horizon/buffer.hpp"
+#include "horizon/cell.hpp"
 #include "horizon/points.hpp"
 
 namespace horizon {
@@ -43,11 +44,17 @@ public:
   const Buffer<std::int32_t>& shifts() const { return shifts_; }
   const Buffer<double>& distances() const { return distances_; }
   const Buffer<double>& vectors() const { return vectors_; }
-  /// Attaches the per-entry geometry (each empty, or sized as shifts() etc. say).
-  void set_geometry(Buffer<std::int32_t> shifts, Buffer<double> distances, Buffer<double> vectors) {
+  /// Which of them the list carries, and the points' dimension (components per shift and vector).
+  const PairOutputs& outputs() const { return outputs_; }
+  int geometry_dims() const { return geometry_dims_; }
+  /// Attaches the per-entry geometry of `dims`-D points: those `outputs` names, sized as above.
+  void set_geometry(PairOutputs outputs, Buffer<std::int32_t> shifts, Buffer<double> distances, Buffer<double> vectors,
+                    int dims) {
+    outputs_ = outputs;
     shifts_ = std::move(shifts);
     distances_ = std::move(distances);
     vectors_ = std::move(vectors);
+    geometry_dims_ = outputs.any() ? dims : 0;
   }
 
   /// Gives up the CSR arrays (the list is left empty), for filters that reuse them in place.
@@ -55,7 +62,7 @@ public:
     std::pair<Buffer<std::int64_t>, Buffer<point_id>> arrays{std::move(offsets_), std::move(indices_)};
     offsets_.assign(1, 0);
     indices_.clear();
-    set_geometry({}, {}, {});
+    set_geometry({}, {}, {}, {}, 0);
     return arrays;
   }
 
@@ -67,6 +74,8 @@ private:
   bool half_ = false;
   Buffer<std::int32_t> shifts_;
   Buffer<double> distances_, vectors_;
+  PairOutputs outputs_;
+  int geometry_dims_ = 0;
 };
 
 }  // namespace horizon

@@ -99,7 +99,7 @@ struct CellEntries {
 
   NeighborList list(Buffer<std::int64_t> offsets, bool half) && {
     NeighborList result(std::move(offsets), std::move(indices), half);
-    result.set_geometry(std::move(shifts), std::move(distances), std::move(vectors));
+    result.set_geometry(outputs, std::move(shifts), std::move(distances), std::move(vectors), dims);
     return result;
   }
 };

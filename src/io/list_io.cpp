@@ -99,15 +99,31 @@ NeighborList read_npy_list(const std::string& prefix, std::size_t points, bool h
 
 std::string write_neighbor_list(const std::string& prefix, const NeighborList& list,
                                 ListFormat format) {
+  if (format == ListFormat::csv && list.outputs().any())
+    throw Error(prefix + ": shifts, distances and vectors are written as .npy files, not csv");
   if (format == ListFormat::csv) {
     write_csv(prefix + ".csv", list);
     return prefix + ".csv";
   }
-  // Offsets go last: when they are in place, the indices they describe are complete.
+  // Offsets go last: when they are in place, the indices (and geometry) they describe are complete.
   const std::string offsets_path = prefix + ".offsets.npy", indices_path = prefix + ".indices.npy";
-  detail::write_npy(indices_path, "i4", {list.indices().size()}, list.indices().data());
+  const std::size_t entries = list.indices().size(), dims = static_cast<std::size_t>(list.geometry_dims());
+  std::string written = offsets_path + "," + indices_path;
+  if (list.outputs().shifts) {
+    detail::write_npy(prefix + ".shifts.npy", "i4", {entries, dims}, list.shifts().data());
+    written += "," + prefix + ".shifts.npy";
+  }
+  if (list.outputs().distances) {
+    detail::write_npy(prefix + ".distances.npy", "f8", {entries}, list.distances().data());
+    written += "," + prefix + ".distances.npy";
+  }
+  if (list.outputs().vectors) {
+    detail::write_npy(prefix + ".vectors.npy", "f8", {entries, dims}, list.vectors().data());
+    written += "," + prefix + ".vectors.npy";
+  }
+  detail::write_npy(indices_path, "i4", {entries}, list.indices().data());
   detail::write_npy(offsets_path, "i8", {list.offsets().size()}, list.offsets().data());
-  return offsets_path + "," + indices_path;
+  return written;
 }
 
 std::int64_t write_neighbor_list_in_batches(const std::string& prefix, PointView points, const SearchOptions& options,
