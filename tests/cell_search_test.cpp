@@ -129,6 +129,30 @@ TEST(CellSearch, RandomCellsEqualTheOracleOnEveryBackend) {
   }
 }
 
+TEST(CellSearch, LargerSystemsTakeTheGridAndEqualTheOracle) {
+  // Hundreds of points and their images: the engine's grid finds the candidates (a few dozen
+  // points and images are tested all against all instead).
+  std::mt19937_64 rng(580);
+  for (int problem = 0; problem < 12; ++problem) {
+    const int dims = problem % 4 == 0 ? 2 : 3;
+    const Cell cell = random_cell(rng, dims, problem % 3 == 0 ? 0.1 : 0.4);
+    const PointSet points = points_around(cell, dims, 150 + rng() % 150, rng);
+    SearchOptions options;
+    options.cell = cell;
+    options.horizon = std::uniform_real_distribution<double>(0.5, 2.5)(rng);
+    options.half = problem % 2 == 1;
+    options.outputs = {problem % 3 != 1, true, problem % 3 != 2};
+    const NeighborList expected = brute_force(points.view(), options);
+    for (Backend backend : cpu_and_gpu()) {
+      options.backend = backend;
+      SearchStats stats;
+      const NeighborList got = search(points.view(), options, &stats);
+      EXPECT_TRUE(got == expected) << first_difference(got, expected) << "\nproblem " << problem;
+      if (backend != Backend::automatic) EXPECT_EQ(stats.backend, backend) << "the grid ran on the backend asked for";
+    }
+  }
+}
+
 TEST(CellSearch, PerAtomRadiiEqualTheOracle) {
   std::mt19937_64 rng(5858);
   for (int problem = 0; problem < 20; ++problem) {

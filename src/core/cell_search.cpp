@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "cell_problem.hpp"
 #include "horizon/error.hpp"
@@ -156,6 +157,50 @@ Images make_images(PointView points, const CellProblem& problem, double reach_ma
   return images;
 }
 
+/// Above this many pair tests (queries x points and images) the engine's grid is cheaper.
+constexpr std::size_t small_problem_tests = std::size_t{1} << 15;
+
+/// The candidates of a small system: each of the first `queries` points against every other
+/// point of `local`, rows ascending, with the engine's test (metric, horizon). The distances of
+/// a row are computed in one loop the compiler vectorises, then compared.
+template <int D, Metric M>
+NeighborList all_candidates(PointView local, std::size_t queries, double horizon) {
+  const double threshold = metric_threshold(M, horizon);
+  const double* x = local.float64_data();
+  const std::size_t n = local.size();
+  std::vector<double> accumulated(n);
+  Buffer<std::int64_t> offsets(queries + 1);
+  offsets[0] = 0;
+  std::vector<point_id> indices;
+  for (std::size_t i = 0; i < queries; ++i) {
+    const double* xi = x + i * D;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double* xk = x + k * D;
+      accumulated[k] = metric_accumulate<M>(xi[0] - xk[0], xi[1] - xk[1], D == 3 ? xi[2] - xk[2] : 0.0);
+    }
+    accumulated[i] = threshold;  // not itself
+    for (std::size_t k = 0; k < n; ++k)
+      if (accumulated[k] < threshold) indices.push_back(static_cast<point_id>(k));
+    offsets[i + 1] = static_cast<std::int64_t>(indices.size());
+  }
+  return NeighborList(std::move(offsets), Buffer<point_id>(indices.begin(), indices.end()), false);
+}
+
+NeighborList all_candidates(PointView local, std::size_t queries, const SearchOptions& options) {
+  const bool three = local.dims() == 3;
+  switch (options.metric) {
+    case Metric::manhattan:
+      return three ? all_candidates<3, Metric::manhattan>(local, queries, options.horizon)
+                   : all_candidates<2, Metric::manhattan>(local, queries, options.horizon);
+    case Metric::chebyshev:
+      return three ? all_candidates<3, Metric::chebyshev>(local, queries, options.horizon)
+                   : all_candidates<2, Metric::chebyshev>(local, queries, options.horizon);
+    default:
+      return three ? all_candidates<3, Metric::euclidean>(local, queries, options.horizon)
+                   : all_candidates<2, Metric::euclidean>(local, queries, options.horizon);
+  }
+}
+
 /// Walks row i of the engine's list in (j, S) order: the wrapped points' part (ascending j)
 /// and the images' part (ascending (j, G), so ascending (j, S)) merged, each candidate measured
 /// on the caller's coordinates and kept or dropped as the oracle does; `emit` gets each kept one.
@@ -225,7 +270,7 @@ NeighborList map_rows(const NeighborList& candidates, const Images& images, cons
   const auto rows = static_cast<std::int64_t>(points);
   Buffer<std::int64_t> offsets(points + 1);
   offsets[0] = 0;
-#pragma omp parallel for schedule(dynamic, 512) num_threads(threads) if (threads > 1)
+#pragma omp parallel for schedule(dynamic, 512) num_threads(threads) if (threads > 1 && rows > 512)
   for (std::int64_t i = 0; i < rows; ++i) {
     std::int64_t count = 0;
     walk_row<D, M>(candidates.row(static_cast<std::size_t>(i)), static_cast<point_id>(i), images, problem, points,
@@ -234,7 +279,7 @@ NeighborList map_rows(const NeighborList& candidates, const Images& images, cons
   }
   inclusive_scan(offsets.data() + 1, points, threads);
   CellEntries entries(static_cast<std::size_t>(offsets[points]), D, problem.outputs, problem.metric);
-#pragma omp parallel for schedule(dynamic, 512) num_threads(threads) if (threads > 1)
+#pragma omp parallel for schedule(dynamic, 512) num_threads(threads) if (threads > 1 && rows > 512)
   for (std::int64_t i = 0; i < rows; ++i) {
     auto at = static_cast<std::size_t>(offsets[i]);
     walk_row<D, M>(candidates.row(static_cast<std::size_t>(i)), static_cast<point_id>(i), images, problem, points,
@@ -277,7 +322,14 @@ NeighborList search_cell(PointView points, const SearchOptions& options, std::sp
   inner.outputs = PairOutputs{};
   inner.self_interaction = false;
   const PointView local(images.xyz.data(), images.xyz.size() / static_cast<std::size_t>(dims), dims);
-  const NeighborList candidates = search(local, inner, &stats);
+  // A small system (a primitive cell) tests every query against every point and image at once:
+  // cheaper than a grid, as the engine's fixed cost dominates a few hundred pair tests.
+  const bool small = points.size() * local.size() <= small_problem_tests;
+  const NeighborList candidates = small ? all_candidates(local, points.size(), inner) : search(local, inner, &stats);
+  if (small) {
+    stats.backend = Backend::serial;
+    stats.threads = 1;
+  }
   clock.lap();
 
   NeighborList list;
