@@ -3,7 +3,7 @@
 /// The storage of neighbour lists: a std::vector whose elements are not zeroed on resize. A list
 /// is always written in full before it is read, and zeroing 470 MB of indices first took 0.19 s
 /// of a 1.1 s search on one core; without it the pages are faulted in by the (parallel) fill.
-/// The last three large blocks freed (32 MB or more each, up to a quarter of the machine's memory)
+/// The last six large blocks freed (32 MB or more each, up to a quarter of the machine's memory)
 /// are kept for the next lists of about their size, and the largest working arrays (1 MB or
 /// more, up to 16 of them and an eighth of the memory) for the next search's, so a search
 /// repeated every time step does not fault its pages in again; release_cached_buffers() gives

@@ -45,10 +45,11 @@ struct Pool {
 // Lists: 32 MB and up (glibc maps larger blocks afresh at every malloc: its mmap threshold stops
 // there): a search's offsets and indices, or the three lists of the max radius rule (the gather
 // rows, their transpose, the union), which with two slots faulted in 0.8 GB again every call
-// (clustered cloud of 10^6 points, 2-core Zen 5 VM: 2.2-2.3 s a call, 1.7-1.8 s with three).
+// (clustered cloud of 10^6 points, 2-core Zen 5 VM: 2.2-2.3 s a call, 1.7-1.8 s with three);
+// or a cell search's candidates and its ids, shifts, distances and vectors (six slots).
 Pool& list_pool() {
   // Never destroyed: lists may be freed by static destructors.
-  static auto* pool = new Pool(std::size_t{32} << 20, 3, 4);
+  static auto* pool = new Pool(std::size_t{32} << 20, 6, 4);
   return *pool;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // What the cell search and its oracle share: the checked problem (cell, horizons, rules) and
 // the test and output of one entry (i, j, S), so that both decide and write every entry alike.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -95,6 +96,15 @@ struct CellEntries {
     }
     if (outputs.distances)
       distances[at] = metric == Metric::euclidean ? std::sqrt(e.accumulated) : e.accumulated;
+  }
+
+  /// Entries [from, from + count) of `other` to [to, to + count).
+  void copy(const CellEntries& other, std::size_t from, std::size_t to, std::size_t count) {
+    const auto d = static_cast<std::size_t>(dims);
+    std::copy_n(other.indices.data() + from, count, indices.data() + to);
+    if (outputs.shifts) std::copy_n(other.shifts.data() + from * d, count * d, shifts.data() + to * d);
+    if (outputs.distances) std::copy_n(other.distances.data() + from, count, distances.data() + to);
+    if (outputs.vectors) std::copy_n(other.vectors.data() + from * d, count * d, vectors.data() + to * d);
   }
 
   NeighborList list(Buffer<std::int64_t> offsets, bool half) && {

@@ -264,28 +264,36 @@ void walk_row(std::span<const point_id> row, point_id i, const Images& images, c
   }
 }
 
+/// The list from the candidates, each row walked once: written where the candidates' row was
+/// (with room for i itself under self_interaction), then moved together unless every candidate
+/// was kept, as in a full list almost always (the candidates differ only by rounding).
 template <int D, Metric M>
 NeighborList map_rows(const NeighborList& candidates, const Images& images, const CellProblem& problem,
                       std::size_t points, int threads) {
   const auto rows = static_cast<std::int64_t>(points);
+  const std::int64_t self = problem.self_interaction ? 1 : 0;
+  const Buffer<std::int64_t>& room = candidates.offsets();
+  const auto capacity = static_cast<std::size_t>(room[points] + self * rows);
+  CellEntries spacious(capacity, D, problem.outputs, problem.metric);
   Buffer<std::int64_t> offsets(points + 1);
   offsets[0] = 0;
 #pragma omp parallel for schedule(dynamic, 512) num_threads(threads) if (threads > 1 && rows > 512)
   for (std::int64_t i = 0; i < rows; ++i) {
-    std::int64_t count = 0;
+    const auto first = static_cast<std::size_t>(room[i] + self * i);
+    std::size_t at = first;
     walk_row<D, M>(candidates.row(static_cast<std::size_t>(i)), static_cast<point_id>(i), images, problem, points,
-                   [&](const CellEntry&) { ++count; });
-    offsets[i + 1] = count;
+                   [&](const CellEntry& e) { spacious.write(at++, e); });
+    offsets[i + 1] = static_cast<std::int64_t>(at - first);
   }
   inclusive_scan(offsets.data() + 1, points, threads);
-  CellEntries entries(static_cast<std::size_t>(offsets[points]), D, problem.outputs, problem.metric);
+  const auto total = static_cast<std::size_t>(offsets[points]);
+  if (total == capacity) return std::move(spacious).list(std::move(offsets), problem.half);
+  CellEntries exact(total, D, problem.outputs, problem.metric);
 #pragma omp parallel for schedule(dynamic, 512) num_threads(threads) if (threads > 1 && rows > 512)
-  for (std::int64_t i = 0; i < rows; ++i) {
-    auto at = static_cast<std::size_t>(offsets[i]);
-    walk_row<D, M>(candidates.row(static_cast<std::size_t>(i)), static_cast<point_id>(i), images, problem, points,
-                   [&](const CellEntry& e) { entries.write(at++, e); });
-  }
-  return std::move(entries).list(std::move(offsets), problem.half);
+  for (std::int64_t i = 0; i < rows; ++i)
+    exact.copy(spacious, static_cast<std::size_t>(room[i] + self * i), static_cast<std::size_t>(offsets[i]),
+               static_cast<std::size_t>(offsets[i + 1] - offsets[i]));
+  return std::move(exact).list(std::move(offsets), problem.half);
 }
 
 }  // namespace
