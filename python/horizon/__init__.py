@@ -28,9 +28,9 @@ class NeighborList:
     indices[offsets[i]:offsets[i + 1]]. offsets is int64 (N + 1), indices int32; when the list
     comes from search() both are read-only views of horizon's buffers (no copy)."""
 
-    shifts = None          #: (total, dims) int32: each entry's periodic shift S, when search(shifts=True)
-    distances = None       #: (total,) float64: each entry's distance |D|, when search(distances=True)
-    vectors = None         #: (total, dims) float64: each entry's D = x_j + S . cell - x_i, when search(vectors=True)
+    shifts = None          #: each entry's periodic shift S, int32 of shape (total, dims), when search(shifts=True)
+    distances = None       #: each entry's distance |D|, float64 of shape (total,), when search(distances=True)
+    vectors = None         #: each entry's D = x_j + S . cell - x_i, float64 (total, dims), when search(vectors=True)
     backend = None         #: the backend that built the list ("serial", "openmp", "cuda"); None if not searched
     threads = None         #: the threads it used
     backend_choice = None  #: why that backend and thread count (backend="auto" says what it went by)
