@@ -29,7 +29,7 @@ class NeighborList:
     comes from search() both are read-only views of horizon's buffers (no copy)."""
 
     shifts = None          #: each entry's periodic shift S, int32 of shape (total, dims), when search(shifts=True)
-    distances = None       #: each entry's distance |D|, float64 of shape (total,), when search(distances=True)
+    distances = None       #: each entry's distance (the norm of D), float64 of shape (total,), when search(distances=True)
     vectors = None         #: each entry's D = x_j + S . cell - x_i, float64 (total, dims), when search(vectors=True)
     backend = None         #: the backend that built the list ("serial", "openmp", "cuda"); None if not searched
     threads = None         #: the threads it used
@@ -344,7 +344,7 @@ def search(points, horizon=None, *, backend="auto", metric="l2", half=False, sor
     an entry of its own, ordered by j, then by shift (radius_rule="sum" is ASE's r_i + r_j);
     self_interaction: i is its own neighbour at shift 0;
     shifts, distances, vectors: per-entry arrays on the list (nl.shifts, nl.distances,
-    nl.vectors: S, |D| and D = x_j + S . cell - x_i), computed as each pair is found.
+    nl.vectors: S, the distance and D = x_j + S . cell - x_i), computed as each pair is found.
 
     A CUDA array (__cuda_array_interface__: CuPy, PyTorch; float64, C-contiguous) is searched
     where it lies, on its GPU and stream, and gives a DeviceNeighborList (backend, threads and
