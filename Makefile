@@ -81,7 +81,7 @@ test-sanitize: deps
 # libFuzzer (Debian's clang) over every reader of user files, FUZZ_SECONDS per target, JOBS
 # targets at a time; inputs that reach new code are merged into the committed corpus, which
 # `make test` replays (under the sanitizers too).
-FUZZ_TARGETS = npy_points text_points bond_filters neighbor_list
+FUZZ_TARGETS = npy_points text_points extxyz lammps_data bond_filters neighbor_list
 FUZZ_SECONDS ?= 600
 FUZZ_FLAGS = -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
 fuzz:

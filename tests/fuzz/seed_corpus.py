@@ -40,6 +40,18 @@ seed("text_points", "plane", "# 2-D\n0.5 0.25\n1 1 # comment\n\n2 2\n")
 seed("text_points", "peridigm", "# x y z block volume\n0 0 0 1 0.001\n1 0 0 2 0.001\n")
 seed("text_points", "infinite", "0 0 inf\n")
 
+seed("extxyz", "silicon", '2\nLattice="0 2.715 2.715 2.715 0 2.715 2.715 2.715 0" Properties=species:S:1:pos:R:3 '
+     'pbc="T T T"\nSi 0 0 0\nSi 1.3575 1.3575 1.3575\n')
+seed("extxyz", "slab_columns", '2\nLattice="3 0 0 0 3 0 0 0 0" pbc="T T F" Properties=species:S:1:pos:R:3:forces:R:3 '
+     'energy=-1.5\nAl 0 0 0 0.1 0.2 0.3\nAl 1.5 1.5 1 0 0 0\n')
+seed("extxyz", "molecule", "3\nwater\nO 0 0 0\nH 0.76 0.59 0\nH -0.76 0.59 0\n")
+seed("extxyz", "bad_lattice", '1\nLattice="1 0 0 0 1 0 0 0"\nH 0 0 0\n')
+seed("lammps_data", "triclinic", "two atoms\n\n2 atoms\n1 atom types\n0 2 xlo xhi\n0 2 ylo yhi\n0 3 zlo zhi\n"
+     "0.5 0 0 xy xz yz\n\nMasses\n\n1 28.0\n\nAtoms # atomic\n\n2 1 1.0 1.0 1.0\n1 1 0.1 0.2 0.3\n")
+seed("lammps_data", "full_style", "water\n\n1 atoms\n0 5 xlo xhi\n0 5 ylo yhi\n0 5 zlo zhi\n\n"
+     "Atoms # full\n\n1 1 1 -0.8 1 1 1 0 0 0\n")
+seed("lammps_data", "missing_atoms", "x\n\n2 atoms\n0 2 xlo xhi\n0 2 ylo yhi\n0 2 zlo zhi\n\nAtoms # atomic\n\n1 1 0 0 0\n")
+
 rectangle = {"type": "rectangle", "normal": [0, 1, 0], "lower_left_corner": [1.5, 1.5, 0.5],
              "bottom_unit_vector": [1, 0, 0], "bottom_length": 2, "side_length": 2}
 disk = {"type": "disk", "center": [2, 2, 2], "normal": [1, 1, 0], "radius": 1.2}
