@@ -248,6 +248,19 @@ TEST(CellSearch, OpenAxesIgnoreTheirVectors) {
   EXPECT_TRUE(oracle == expected) << first_difference(oracle, expected);
 }
 
+TEST(CellSearch, GeometryThatCannotFitIsListTooLarge) {
+  const PointSet points = random_cloud(2000, 3, 3, 5.0);
+  SearchOptions options;
+  options.horizon = 1.0;
+  options.cell = Cell::orthorhombic({5, 5, 5});
+  options.outputs = {true, true, true};
+  const auto entries = static_cast<std::size_t>(search(points.view(), options).total());
+  options.max_memory = entries * 20;  // the ids fit (4 bytes an entry), not with 44 more for S, d and D
+  EXPECT_THROW(search(points.view(), options), ListTooLarge);
+  options.outputs = {};
+  EXPECT_EQ(search(points.view(), options).total(), static_cast<std::int64_t>(entries));
+}
+
 TEST(CellSearch, BadCellsAreClearErrors) {
   const PointSet points = random_cloud(10, 3, 1, 1.0);
   auto message = [&](const Cell& cell, const std::string& expected, SearchOptions options = {}) {

@@ -12,6 +12,7 @@
 #include "horizon/error.hpp"
 #include "horizon/grid.hpp"
 #include "horizon/stopwatch.hpp"
+#include "memory_check.hpp"
 #include "parallel_scan.hpp"
 
 namespace horizon::detail {
@@ -269,11 +270,15 @@ void walk_row(std::span<const point_id> row, point_id i, const Images& images, c
 /// was kept, as in a full list almost always (the candidates differ only by rounding).
 template <int D, Metric M>
 NeighborList map_rows(const NeighborList& candidates, const Images& images, const CellProblem& problem,
-                      std::size_t points, int threads) {
+                      std::size_t points, int threads, const SearchOptions& options) {
   const auto rows = static_cast<std::int64_t>(points);
   const std::int64_t self = problem.self_interaction ? 1 : 0;
   const Buffer<std::int64_t>& room = candidates.offsets();
   const auto capacity = static_cast<std::size_t>(room[points] + self * rows);
+  const PairOutputs& out = problem.outputs;
+  check_list_fits(static_cast<std::int64_t>(capacity), options,
+                  sizeof(point_id) + (out.shifts ? D * sizeof(std::int32_t) : 0) + (out.distances ? sizeof(double) : 0) +
+                      (out.vectors ? D * sizeof(double) : 0));
   CellEntries spacious(capacity, D, problem.outputs, problem.metric);
   Buffer<std::int64_t> offsets(points + 1);
   offsets[0] = 0;
@@ -344,16 +349,16 @@ NeighborList search_cell(PointView points, const SearchOptions& options, std::sp
   const bool three = dims == 3;
   switch (problem.metric) {
     case Metric::euclidean:
-      list = three ? map_rows<3, Metric::euclidean>(candidates, images, problem, points.size(), threads)
-                   : map_rows<2, Metric::euclidean>(candidates, images, problem, points.size(), threads);
+      list = three ? map_rows<3, Metric::euclidean>(candidates, images, problem, points.size(), threads, options)
+                   : map_rows<2, Metric::euclidean>(candidates, images, problem, points.size(), threads, options);
       break;
     case Metric::manhattan:
-      list = three ? map_rows<3, Metric::manhattan>(candidates, images, problem, points.size(), threads)
-                   : map_rows<2, Metric::manhattan>(candidates, images, problem, points.size(), threads);
+      list = three ? map_rows<3, Metric::manhattan>(candidates, images, problem, points.size(), threads, options)
+                   : map_rows<2, Metric::manhattan>(candidates, images, problem, points.size(), threads, options);
       break;
     case Metric::chebyshev:
-      list = three ? map_rows<3, Metric::chebyshev>(candidates, images, problem, points.size(), threads)
-                   : map_rows<2, Metric::chebyshev>(candidates, images, problem, points.size(), threads);
+      list = three ? map_rows<3, Metric::chebyshev>(candidates, images, problem, points.size(), threads, options)
+                   : map_rows<2, Metric::chebyshev>(candidates, images, problem, points.size(), threads, options);
       break;
   }
   stats.grid_seconds += images_seconds;

@@ -32,8 +32,8 @@ std::string size_text(std::size_t bytes) {
 
 }  // namespace
 
-void check_list_fits(std::int64_t entries, const SearchOptions& options) {
-  const std::size_t needed = static_cast<std::size_t>(entries) * sizeof(point_id);
+void check_list_fits(std::int64_t entries, const SearchOptions& options, std::size_t bytes_per_entry) {
+  const std::size_t needed = static_cast<std::size_t>(entries) * bytes_per_entry;
   // The blocks kept for the next lists are free memory to this search (allocate_large reuses
   // or frees them).
   const std::size_t available = memory_available();

@@ -9,6 +9,6 @@ namespace horizon::detail {
 
 /// Throws ListTooLarge when `entries` ids would exceed options.max_memory or, when that is 0,
 /// the memory the system reports available (Linux MemAvailable; no check where unknown).
-void check_list_fits(std::int64_t entries, const SearchOptions& options);
+void check_list_fits(std::int64_t entries, const SearchOptions& options, std::size_t bytes_per_entry = sizeof(point_id));
 
 }  // namespace horizon::detail
