@@ -1,7 +1,8 @@
 // horizon_atomistic_bench: atomistic systems against vesin (Luthaf/vesin, built from a local copy
 // by this directory's CMake) in one process, on the same atoms: rattled diamond supercells of 64
-// to 10^6 atoms at 5 and 6 angstrom, the same atoms in a triclinic cell of the same volume, and
-// primitive cells with cutoffs 2-5x the cell; one core and all; ids only, and with distances and
+// to 10^6 atoms at 5 and 6 angstrom, the same atoms in a triclinic cell of the same volume, the
+// 10^6-point lattice and cloud of the other benchmarks in a periodic cube, and primitive cells
+// with cutoffs 2-5x the cell; one core and all; ids only, and with distances and
 // vectors (vesin: the same, full list, unsorted). CSV with the ratios.
 #include <CLI/CLI.hpp>
 #include <omp.h>
@@ -12,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "horizon/generate.hpp"
 #include "horizon/search.hpp"
 #include "median_seconds.hpp"
 #if defined(HORIZON_WITH_VESIN)
@@ -67,6 +69,17 @@ System primitive(bool silicon, double cutoff) {
   return s;
 }
 
+/// The 10^6-point problems of the other benchmarks in a periodic cube of side 10: the lattice
+/// (spacing 0.1) or a random cloud, at m = 1.5 or 3.015 spacings.
+System cube(bool cloud, double m) {
+  System s;
+  s.name = std::string(cloud ? "cloud_" : "lattice_") + "1000000_m" + (m < 2 ? "1.5" : "3.015");
+  s.cutoff = m * 0.1;
+  s.cell = Cell::orthorhombic({10, 10, 10});
+  s.xyz = (cloud ? random_cloud(1000000, 3, 1, 10.0) : lattice(100, 3, 10.0)).xyz;
+  return s;
+}
+
 #if defined(HORIZON_WITH_VESIN)
 /// vesin's full list with distances and vectors (shifts too when asked), `threads` threads.
 std::size_t run_vesin(const System& s, bool geometry, int threads) {
@@ -110,6 +123,9 @@ int main(int argc, char** argv) {
         systems.push_back(diamond(k, cutoff, false));
         if (k >= 4) systems.push_back(diamond(k, cutoff, true));
       }
+  if (largest >= 50)
+    for (bool cloud : {false, true})
+      for (double m : {1.5, 3.015}) systems.push_back(cube(cloud, m));
   for (double cutoff : {5.0, 9.0, 12.75}) systems.push_back(primitive(false, cutoff));
   systems.push_back(primitive(true, 5.0));
   const int all = omp_get_max_threads();
