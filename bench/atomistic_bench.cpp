@@ -113,7 +113,9 @@ std::size_t run_vesin(const System& s, bool geometry, int threads) {
 int main(int argc, char** argv) {
   CLI::App app{"horizon_atomistic_bench: atomistic systems, horizon against vesin, as CSV"};
   int reps = 5, largest = 50;
+  std::string only;
   app.add_option("--reps", reps, "repetitions (the median is reported)");
+  app.add_option("--only", only, "only the systems whose name contains this (diamond, triclinic, lattice, cloud, primitive)");
   app.add_option("--largest", largest, "largest supercell k (8 k^3 atoms; 50: 10^6)");
   CLI11_PARSE(app, argc, argv);
   std::vector<System> systems;
@@ -140,6 +142,7 @@ int main(int argc, char** argv) {
               "vesin_over_horizon\n");
   for (const System& s : systems)
     for (int threads : {1, all}) {
+      if (s.name.find(only) == std::string::npos) continue;
       if (threads == all && all == 1) continue;
       const PointView points(s.xyz.data(), s.xyz.size() / 3, 3);
       SearchOptions ids;

@@ -226,8 +226,16 @@ void walk_row(std::span<const point_id> row, point_id i, const Images& images, c
   };
   // The next kept candidate of [at, end) (false: none); i itself at S = 0 joins the first part.
   bool self_pending = problem.self_interaction;
+  // Candidates are points in the caller's order, scattered in memory when that order is not
+  // spatial: their coordinates and cells are asked for a few candidates ahead.
+  constexpr std::size_t ahead = 8;
+  auto prefetch_point = [&](point_id j) {
+    __builtin_prefetch(images.original.data() + static_cast<std::size_t>(j) * D);
+    __builtin_prefetch(images.wraps.data() + static_cast<std::size_t>(j) * 3);
+  };
   auto next_home = [&](std::size_t& at, CellEntry& e) {
     for (; at < split; ++at) {
+      if (at + ahead < split) prefetch_point(row[at + ahead]);
       if (self_pending && row[at] > i) break;
       if (candidate(row[at], e)) {
         ++at;
@@ -244,11 +252,14 @@ void walk_row(std::span<const point_id> row, point_id i, const Images& images, c
     return false;
   };
   auto next_image = [&](std::size_t& at, CellEntry& e) {
-    for (; at < row.size(); ++at)
+    for (; at < row.size(); ++at) {
+      if (at + ahead < row.size())
+        prefetch_point(images.image_of[static_cast<std::size_t>(row[at + ahead]) - points]);
       if (candidate(row[at], e)) {
         ++at;
         return true;
       }
+    }
     return false;
   };
   std::size_t home_at = 0, image_at = split;
