@@ -174,6 +174,18 @@ TEST(CellSearch, PerAtomRadiiEqualTheOracle) {
   }
 }
 
+TEST(CellSearch, NoPointsGiveAnEmptyListWithItsGeometry) {
+  SearchOptions options;
+  options.horizon = 1.0;
+  options.cell = Cell::orthorhombic({2, 2, 2});
+  options.outputs.distances = true;
+  const PointSet none(3, {});
+  EXPECT_EQ(search(none.view(), options).total(), 0);
+  const NeighborList radii = search_with_radii(none.view(), {}, RadiusRule::sum, options);
+  EXPECT_EQ(radii.total(), 0);
+  EXPECT_TRUE(radii.outputs().distances);
+}
+
 TEST(CellSearch, OneAtomInASmallCellFindsItsImagesShellByShell) {
   // Simple cubic, a = 1, horizon 1.5: the 6 images at distance 1 and the 12 at sqrt(2) (sqrt(3)
   // = 1.73 is out); with horizon 2.1 also the 8 at sqrt(3) and the 6 at 2.

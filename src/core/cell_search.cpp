@@ -47,7 +47,7 @@ CellProblem cell_problem(PointView points, const SearchOptions& options, std::sp
     if (options.half && (rule == RadiusRule::gather || rule == RadiusRule::scatter))
       throw Error(std::string("radii: a half list needs a symmetric rule (max, min or sum), not ") +
                   radius_rule_name(rule));
-    const double r = radii.empty() ? 0 : *std::max_element(radii.begin(), radii.end());
+    const double r = *std::max_element(radii.begin(), radii.end());
     problem.largest = rule == RadiusRule::sum ? 2 * r : r;
   }
   return problem;

@@ -419,6 +419,7 @@ NeighborList search_with_radii(PointView points, std::span<const double> radii, 
     SearchOptions chosen = options;
     chosen.backend = choice.backend;
     chosen.threads = choice.threads;
+    if (points.empty()) chosen.horizon = 1;  // no radii to take it from: any valid horizon
     SearchStats local;
     SearchStats& out = stats ? *stats : local;
     out = SearchStats{};
