@@ -323,7 +323,8 @@ def search(points, horizon=None, *, backend="auto", metric="l2", half=False, sor
     """The neighbour list of `points` ((N, 2) or (N, 3) array-like, float64 or float32, any
     order): row i holds every j != i with distance(i, j) < horizon.
 
-    backend: "auto" (a GPU if there is one, else all cores), "serial", "openmp" or "cuda";
+    backend: "auto" (by the problem and the machine: one core, the free cores or the GPU), "serial",
+    "openmp" or "cuda";
     metric: "l2", "l1" or "linf"; half: keep each pair once, in the row of the smaller id;
     sort_rows: rows ascending by id (False is faster); threads: openmp threads (0: all);
     device: CUDA device; devices: several CUDA devices, one part of the points each;
