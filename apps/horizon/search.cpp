@@ -222,6 +222,17 @@ std::vector<int> parse_gpus(const std::string& gpus) {
   return devices;
 }
 
+/// The number `text` starts with, and how many characters it took (0: none).
+std::size_t leading_number(const std::string& text, double& value) {
+  std::size_t used = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  return used;
+}
+
 /// --box Lx,Ly[,Lz]: the period of each axis, 0 for an open one.
 std::array<double, 3> parse_box(const std::string& text) {
   std::array<double, 3> box{0, 0, 0};
@@ -230,12 +241,7 @@ std::array<double, 3> parse_box(const std::string& text) {
   for (; from <= text.size() && axis < 3; ++axis) {
     const std::size_t comma = std::min(text.find(',', from), text.size());
     const std::string field = text.substr(from, comma - from);
-    std::size_t used = 0;
-    try {
-      box[axis] = std::stod(field, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
+    const std::size_t used = leading_number(field, box[axis]);
     if (used == 0 || used != field.size())
       throw Error("--box " + text + ": '" + field + "' is not a number (expected Lx,Ly[,Lz], 0 for an open axis)");
     from = comma + 1;
@@ -258,13 +264,8 @@ Cell parse_cell(const std::string& text, const std::string& pbc, Cell cell) {
         continue;
       }
       if (field.empty()) continue;
-      std::size_t used = 0;
       double value = 0;
-      try {
-        value = std::stod(field, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
+      const std::size_t used = leading_number(field, value);
       if (used == 0 || used != field.size())
         throw Error("--cell: '" + field + "' is not a number (expected \"ax ay az bx by bz cx cy cz\")");
       values.push_back(value);
@@ -280,7 +281,7 @@ Cell parse_cell(const std::string& text, const std::string& pbc, Cell cell) {
     }
   }
   if (!pbc.empty()) {
-    if (text.empty() && !cell.periodic() && cell.vectors == Cell{}.vectors) throw Error("--pbc needs --cell (or a structure file with a cell)");
+    if (text.empty() && cell.vectors == Cell{}.vectors) throw Error("--pbc needs --cell (or a structure file with a cell)");
     std::size_t axis = 0;
     for (std::size_t from = 0; from <= pbc.size(); ++axis) {
       const std::size_t comma = std::min(pbc.find(',', from), pbc.size());
@@ -311,13 +312,8 @@ PairOutputs parse_outputs(const std::string& text) {
 /// of 1024).
 std::size_t parse_memory(const std::string& option, const std::string& text) {
   if (text.empty()) return 0;
-  std::size_t used = 0;
   double value = 0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
+  std::size_t used = leading_number(text, value);
   const std::string unit = text.substr(used);
   const std::string units = "KMGT";
   double scale = 1;

@@ -73,11 +73,10 @@ def primitive_neighbor_list(quantities, pbc, cell, positions, cutoff, numbers=No
     j = nl.indices.astype(np.int64)
     keep = None
     if isinstance(cutoff, dict):
-        species = np.unique(numbers)
-        per_pair = np.zeros((species.max() + 1,) * 2) if len(species) else np.zeros((1, 1))
+        size = 1 + max(int(numbers.max(initial=0)), *(max(pair) for pair in table))
+        per_pair = np.zeros((size, size))  # 0 for pairs the dict does not name: never neighbours
         for (z1, z2), value in table.items():
-            if z1 < per_pair.shape[0] and z2 < per_pair.shape[0]:
-                per_pair[z1, z2] = value
+            per_pair[z1, z2] = value
         keep = nl.distances < per_pair[numbers[i], numbers[j]]
     values = {"i": i, "j": j, "d": nl.distances, "D": nl.vectors,
               "S": None if nl.shifts is None else nl.shifts.astype(np.int64)}

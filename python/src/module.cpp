@@ -185,6 +185,15 @@ OwnedDeviceList search_device(std::uintptr_t pointer, std::size_t count, int dim
   return OwnedDeviceList{std::move(list), stream, options.device, half};
 }
 
+/// A property of OwnedList: one of its list's arrays as a NumPy view that keeps the list alive.
+template <typename T>
+auto list_array(const horizon::Buffer<T>& (horizon::NeighborList::*array)() const) {
+  return [array](py::object self) {
+    const horizon::Buffer<T>& values = (self.cast<const OwnedList&>().list.*array)();
+    return view(values.data(), values.size(), self);
+  };
+}
+
 py::array to_array(const horizon::PointSet& points) {
   py::array_t<double> out({static_cast<py::ssize_t>(points.size()), static_cast<py::ssize_t>(points.dims)});
   std::memcpy(out.mutable_data(), points.xyz.data(), points.xyz.size() * sizeof(double));
@@ -211,26 +220,11 @@ PYBIND11_MODULE(_horizon, m) {
   });
 
   py::class_<OwnedList>(m, "OwnedList")
-      .def_property_readonly("offsets", [](py::object self) {
-        const auto& list = self.cast<const OwnedList&>().list;
-        return view(list.offsets().data(), list.offsets().size(), self);
-      })
-      .def_property_readonly("indices", [](py::object self) {
-        const auto& list = self.cast<const OwnedList&>().list;
-        return view(list.indices().data(), list.indices().size(), self);
-      })
-      .def_property_readonly("shifts", [](py::object self) {
-        const auto& list = self.cast<const OwnedList&>().list;
-        return view(list.shifts().data(), list.shifts().size(), self);
-      })
-      .def_property_readonly("distances", [](py::object self) {
-        const auto& list = self.cast<const OwnedList&>().list;
-        return view(list.distances().data(), list.distances().size(), self);
-      })
-      .def_property_readonly("vectors", [](py::object self) {
-        const auto& list = self.cast<const OwnedList&>().list;
-        return view(list.vectors().data(), list.vectors().size(), self);
-      })
+      .def_property_readonly("offsets", list_array(&horizon::NeighborList::offsets))
+      .def_property_readonly("indices", list_array(&horizon::NeighborList::indices))
+      .def_property_readonly("shifts", list_array(&horizon::NeighborList::shifts))
+      .def_property_readonly("distances", list_array(&horizon::NeighborList::distances))
+      .def_property_readonly("vectors", list_array(&horizon::NeighborList::vectors))
       .def_property_readonly("backend", [](const OwnedList& l) { return std::string(horizon::backend_name(l.stats.backend)); })
       .def_property_readonly("threads", [](const OwnedList& l) { return l.stats.threads; })
       .def_property_readonly("choice", [](const OwnedList& l) { return l.stats.choice; });

@@ -49,21 +49,13 @@ NeighborList oracle(PointView points, const CellProblem& problem) {
   return std::move(entries).list(std::move(offsets), problem.half);
 }
 
-template <int D>
-NeighborList oracle_for(PointView points, const CellProblem& problem) {
-  switch (problem.metric) {
-    case Metric::manhattan: return oracle<D, Metric::manhattan>(points, problem);
-    case Metric::chebyshev: return oracle<D, Metric::chebyshev>(points, problem);
-    default: return oracle<D, Metric::euclidean>(points, problem);
-  }
-}
-
 }  // namespace
 
 NeighborList brute_force_cell(PointView points, const SearchOptions& options, std::span<const double> radii,
                               RadiusRule rule) {
   const CellProblem problem = cell_problem(points, options, radii, rule);
-  return points.dims() == 3 ? oracle_for<3>(points, problem) : oracle_for<2>(points, problem);
+  return with_dims_and_metric(points.dims(), problem.metric,
+                              [&](auto d, auto m) { return oracle<decltype(d)::value, decltype(m)::value>(points, problem); });
 }
 
 }  // namespace horizon::detail

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 
 #include "cell_geometry.hpp"
 #include "horizon/buffer.hpp"
@@ -66,6 +67,20 @@ struct CellProblem {
 /// `box` counts as an orthorhombic cell when `cell` has no periodic axis.
 CellProblem cell_problem(PointView points, const SearchOptions& options, std::span<const double> radii,
                          RadiusRule rule);
+
+/// f(dims, metric) with both as compile-time constants (std::integral_constant): the one place
+/// the cell search and its oracle turn run-time dims and metric into template arguments.
+template <class F>
+decltype(auto) with_dims_and_metric(int dims, Metric metric, F&& f) {
+  auto in = [&](auto d) -> decltype(auto) {
+    switch (metric) {
+      case Metric::manhattan: return f(d, std::integral_constant<Metric, Metric::manhattan>{});
+      case Metric::chebyshev: return f(d, std::integral_constant<Metric, Metric::chebyshev>{});
+      default: return f(d, std::integral_constant<Metric, Metric::euclidean>{});
+    }
+  };
+  return dims == 3 ? in(std::integral_constant<int, 3>{}) : in(std::integral_constant<int, 2>{});
+}
 
 /// D and its accumulated distance for entry (i, j, S) of D-dimensional points.
 template <int D, Metric M>

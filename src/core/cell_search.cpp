@@ -14,6 +14,7 @@
 #include "horizon/stopwatch.hpp"
 #include "memory_check.hpp"
 #include "parallel_scan.hpp"
+#include "radius_checks.hpp"
 
 namespace horizon::detail {
 
@@ -38,15 +39,7 @@ CellProblem cell_problem(PointView points, const SearchOptions& options, std::sp
     validate_horizon(options.horizon, options.cells_per_horizon);
     problem.largest = options.horizon;
   } else {
-    if (radii.size() != points.size())
-      throw Error("radii: " + std::to_string(radii.size()) + " radii for " + std::to_string(points.size()) + " points");
-    for (std::size_t i = 0; i < radii.size(); ++i)
-      if (!(std::isfinite(radii[i]) && radii[i] > 0))
-        throw Error("radii: point " + std::to_string(i) + " has radius " + std::to_string(radii[i]) +
-                    " (each must be finite and > 0)");
-    if (options.half && (rule == RadiusRule::gather || rule == RadiusRule::scatter))
-      throw Error(std::string("radii: a half list needs a symmetric rule (max, min or sum), not ") +
-                  radius_rule_name(rule));
+    check_radii(points.size(), radii, rule, options.half);
     const double r = *std::max_element(radii.begin(), radii.end());
     problem.largest = rule == RadiusRule::sum ? 2 * r : r;
   }
@@ -185,21 +178,6 @@ NeighborList all_candidates(PointView local, std::size_t queries, double horizon
     offsets[i + 1] = static_cast<std::int64_t>(indices.size());
   }
   return NeighborList(std::move(offsets), Buffer<point_id>(indices.begin(), indices.end()), false);
-}
-
-NeighborList all_candidates(PointView local, std::size_t queries, const SearchOptions& options) {
-  const bool three = local.dims() == 3;
-  switch (options.metric) {
-    case Metric::manhattan:
-      return three ? all_candidates<3, Metric::manhattan>(local, queries, options.horizon)
-                   : all_candidates<2, Metric::manhattan>(local, queries, options.horizon);
-    case Metric::chebyshev:
-      return three ? all_candidates<3, Metric::chebyshev>(local, queries, options.horizon)
-                   : all_candidates<2, Metric::chebyshev>(local, queries, options.horizon);
-    default:
-      return three ? all_candidates<3, Metric::euclidean>(local, queries, options.horizon)
-                   : all_candidates<2, Metric::euclidean>(local, queries, options.horizon);
-  }
 }
 
 /// Walks row i of the engine's list in (j, S) order: the wrapped points' part (ascending j)
@@ -351,29 +329,20 @@ NeighborList search_cell(PointView points, const SearchOptions& options, std::sp
   // A small system (a primitive cell) tests every query against every point and image at once:
   // cheaper than a grid, as the engine's fixed cost dominates a few hundred pair tests.
   const bool small = points.size() * local.size() <= small_problem_tests;
-  const NeighborList candidates = small ? all_candidates(local, points.size(), inner) : search(local, inner, &stats);
+  const auto all_against_all = [&](auto d, auto m) {
+    return all_candidates<decltype(d)::value, decltype(m)::value>(local, points.size(), inner.horizon);
+  };
+  const NeighborList candidates =
+      small ? with_dims_and_metric(dims, inner.metric, all_against_all) : search(local, inner, &stats);
   if (small) {
     stats.backend = Backend::serial;
     stats.threads = 1;
   }
   clock.lap();
 
-  NeighborList list;
-  const bool three = dims == 3;
-  switch (problem.metric) {
-    case Metric::euclidean:
-      list = three ? map_rows<3, Metric::euclidean>(candidates, images, problem, points.size(), threads, options)
-                   : map_rows<2, Metric::euclidean>(candidates, images, problem, points.size(), threads, options);
-      break;
-    case Metric::manhattan:
-      list = three ? map_rows<3, Metric::manhattan>(candidates, images, problem, points.size(), threads, options)
-                   : map_rows<2, Metric::manhattan>(candidates, images, problem, points.size(), threads, options);
-      break;
-    case Metric::chebyshev:
-      list = three ? map_rows<3, Metric::chebyshev>(candidates, images, problem, points.size(), threads, options)
-                   : map_rows<2, Metric::chebyshev>(candidates, images, problem, points.size(), threads, options);
-      break;
-  }
+  NeighborList list = with_dims_and_metric(dims, problem.metric, [&](auto d, auto m) {
+    return map_rows<decltype(d)::value, decltype(m)::value>(candidates, images, problem, points.size(), threads, options);
+  });
   stats.grid_seconds += images_seconds;
   stats.search_seconds += clock.lap();
   return list;

@@ -13,6 +13,7 @@
 #include "cell_search.hpp"
 #include "family_search.hpp"
 #include "parallel_scan.hpp"
+#include "radius_checks.hpp"
 #include "transpose_rows.hpp"
 #include "horizon/cell_index.hpp"
 #include "horizon/error.hpp"
@@ -41,20 +42,25 @@ const char* radius_rule_name(RadiusRule rule) {
   return "?";
 }
 
+void detail::check_radii(std::size_t count, std::span<const double> radii, RadiusRule rule, bool half,
+                         const std::string& one, const std::string& many) {
+  if (radii.size() != count)
+    throw Error("radii: " + std::to_string(radii.size()) + " radii for " + std::to_string(count) + " " + many);
+  for (std::size_t i = 0; i < radii.size(); ++i)
+    if (!(std::isfinite(radii[i]) && radii[i] > 0))
+      throw Error("radii: " + one + " " + std::to_string(i) + " has radius " + std::to_string(radii[i]) +
+                  " (each must be finite and > 0)");
+  if (half && (rule == RadiusRule::gather || rule == RadiusRule::scatter))
+    throw Error(std::string("radii: a half list needs a symmetric rule (max or min) or sum; with ") +
+                radius_rule_name(rule) + " d(i, j) < r_i does not imply d(j, i) < r_j");
+}
+
 namespace {
 
 /// `one` and `many` name what carries the radii: point(s) or quer(y|ies).
 void validate_radii(PointView points, std::span<const double> radii, RadiusRule rule, const SearchOptions& options,
                     const std::string& one = "point", const std::string& many = "points") {
-  if (radii.size() != points.size())
-    throw Error("radii: " + std::to_string(radii.size()) + " radii for " + std::to_string(points.size()) + " " + many);
-  for (std::size_t i = 0; i < radii.size(); ++i)
-    if (!(std::isfinite(radii[i]) && radii[i] > 0))
-      throw Error("radii: " + one + " " + std::to_string(i) + " has radius " + std::to_string(radii[i]) +
-                  " (each must be finite and > 0)");
-  if (options.half && (rule == RadiusRule::gather || rule == RadiusRule::scatter))
-    throw Error(std::string("radii: a half list needs a symmetric rule (max or min); with ") + radius_rule_name(rule) +
-                " d(i, j) < r_i does not imply d(j, i) < r_j");
+  detail::check_radii(points.size(), radii, rule, options.half, one, many);
   if (options.queries != 0) throw Error("radii: SearchOptions::queries is not supported with per-point radii");
   const double largest = radii.empty() ? 0 : *std::max_element(radii.begin(), radii.end());
   for (int a = 0; a < 3; ++a)

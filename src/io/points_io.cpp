@@ -8,6 +8,7 @@
 #include "horizon/error.hpp"
 #include "horizon/io.hpp"
 #include "npy.hpp"
+#include "parse_number.hpp"
 #include "../core/parallel_copy.hpp"
 
 namespace horizon {
@@ -69,12 +70,7 @@ std::vector<std::string_view> split_fields(std::string_view line) {
   return fields;
 }
 
-bool parse_number(std::string_view field, double& value) {
-  const char* first = field.data();
-  if (*first == '+') ++first;
-  const auto [end, error] = std::from_chars(first, field.data() + field.size(), value);
-  return error == std::errc() && end == field.data() + field.size();
-}
+using detail::parse_number;
 
 /// A block id: an integer from 0 to 2^31 - 1.
 bool is_block_id(double v) { return v >= 0 && v <= 2147483647.0 && v == std::floor(v); }

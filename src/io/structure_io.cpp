@@ -12,6 +12,7 @@
 
 #include "horizon/error.hpp"
 #include "horizon/io.hpp"
+#include "parse_number.hpp"
 
 namespace horizon {
 namespace {
@@ -19,10 +20,6 @@ namespace {
 std::string basename(const std::string& path) {
   const auto slash = path.find_last_of('/');
   return slash == std::string::npos ? path : path.substr(slash + 1);
-}
-
-bool ends_with(const std::string& s, const std::string& tail) {
-  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
 std::vector<std::string> words(const std::string& line) {
@@ -37,11 +34,8 @@ std::vector<std::string> words(const std::string& line) {
   return out;
 }
 
-bool number(const std::string& text, double& value) {
-  const char* first = text.data() + (!text.empty() && text[0] == '+');
-  const auto [end, error] = std::from_chars(first, text.data() + text.size(), value);
-  return error == std::errc() && end == text.data() + text.size() && std::isfinite(value);
-}
+/// A finite number, and nothing else.
+bool number(const std::string& text, double& value) { return detail::parse_number(text, value) && std::isfinite(value); }
 
 bool integer(const std::string& text, long long& value) {
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
@@ -284,9 +278,9 @@ Structure read_lammps_data(const std::string& path) {
 
 bool is_structure_file(const std::string& path) {
   const std::string name = basename(path);
-  if (ends_with(name, ".extxyz") || ends_with(name, ".data") || ends_with(name, ".lmp") || name.rfind("data.", 0) == 0)
+  if (name.ends_with(".extxyz") || name.ends_with(".data") || name.ends_with(".lmp") || name.rfind("data.", 0) == 0)
     return true;
-  if (!ends_with(name, ".xyz")) return false;
+  if (!name.ends_with(".xyz")) return false;
   // .xyz: extended XYZ when its first line is a count alone (plain text points have 2-3 columns).
   std::ifstream in(path);
   std::string first;
@@ -298,7 +292,7 @@ bool is_structure_file(const std::string& path) {
 
 Structure read_structure(const std::string& path) {
   const std::string name = basename(path);
-  if (ends_with(name, ".xyz") || ends_with(name, ".extxyz")) return read_extxyz(path);
+  if (name.ends_with(".xyz") || name.ends_with(".extxyz")) return read_extxyz(path);
   return read_lammps_data(path);
 }
 
