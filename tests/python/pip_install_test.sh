@@ -14,5 +14,7 @@ import horizon
 assert "site-packages" in horizon.__file__, horizon.__file__
 nl = horizon.search(horizon.lattice(30), 0.5)
 assert nl.total == 459360, nl.total  # 6 face neighbours x 29*30*30 + 12 edge neighbours x 29*29*30
+i, S = horizon.primitive_neighbor_list("iS", [True] * 3, [[1, 0, 0], [0, 1, 0], [0, 0, 1]], [[0.2, 0.3, 0.4]], 1.5)
+assert len(i) == 18, len(i)  # the atomistic module is installed: 6 images at 1, 12 at sqrt(2)
 print("installed:", horizon.__file__, nl)
 PY
