@@ -9,10 +9,16 @@
 #include <string>
 #include <vector>
 
+#if defined(HORIZON_WITH_CUDA)
+#include <cuda_runtime.h>
+#endif
+
 #include "core/device_part.hpp"
 #include "core/partitioned_search.hpp"
 #include "datasets.hpp"
 #include "same_families.hpp"
+#include "horizon/cuda.hpp"
+#include "horizon/parts.hpp"
 #include "horizon/search.hpp"
 
 namespace horizon::testing {
@@ -43,6 +49,69 @@ TEST(PartitionedSearch, AnyPartCountGivesTheSerialList) {
           }
 }
 
+/// The list whose row ids[r] is rows.row(r) for every part: each point's row from the part
+/// that owns it (a point owned twice or never fails).
+template <class Part, class Rows>
+NeighborList assembled(const std::vector<Part>& parts, std::size_t n, bool half, Rows rows_of) {
+  std::vector<std::vector<point_id>> rows(n);
+  std::vector<int> owners(n, 0);
+  for (const Part& part : parts) {
+    const NeighborList rows_of_part = rows_of(part);
+    EXPECT_EQ(rows_of_part.size(), part.ids.size());
+    for (std::size_t r = 0; r < part.ids.size(); ++r) {
+      const auto row = rows_of_part.row(r);
+      rows[static_cast<std::size_t>(part.ids[r])].assign(row.begin(), row.end());
+      ++owners[static_cast<std::size_t>(part.ids[r])];
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) EXPECT_EQ(owners[i], 1) << "point " << i;
+  Buffer<std::int64_t> offsets(n + 1, 0);
+  Buffer<point_id> indices;
+  for (std::size_t i = 0; i < n; ++i) {
+    indices.insert(indices.end(), rows[i].begin(), rows[i].end());
+    offsets[i + 1] = static_cast<std::int64_t>(indices.size());
+  }
+  return NeighborList(std::move(offsets), std::move(indices), half);
+}
+
+// The public parts on the CPU (the stand-in for GPU parts): every point owned once, its halo
+// disjoint from it, and the union of the parts' rows the one list.
+TEST(PartitionedSearch, PartsOnTheCpuGiveTheSerialList) {
+  for (int dims : {2, 3})
+    for (const Dataset& data : datasets(dims))
+      for (bool half : {false, true})
+        for (int count : {1, 2, 3, 5}) {
+          const SearchOptions options = options_for(data, Metric::euclidean, 1, half);
+          const std::vector<OwnedPart> parts = search_in_parts(data.points.view(), count, options);
+          ASSERT_EQ(parts.size(), static_cast<std::size_t>(count));
+          const NeighborList list = assembled(parts, data.points.size(), half, [](const OwnedPart& p) { return p.rows; });
+          ASSERT_EQ(list, search(data.points.view(), options)) << data.name << " dims " << dims << " half " << half
+                                                                << " parts " << count;
+          const std::vector<PointPart> cut = cut_into_parts(data.points.view(), count, options);
+          for (int p = 0; p < count; ++p) {
+            EXPECT_EQ(cut[p].owned, parts[p].ids);
+            EXPECT_EQ(cut[p].halo.size(), parts[p].halo);
+            std::vector<point_id> both;
+            std::set_intersection(cut[p].owned.begin(), cut[p].owned.end(), cut[p].halo.begin(), cut[p].halo.end(),
+                                  std::back_inserter(both));
+            EXPECT_TRUE(both.empty());
+          }
+        }
+}
+
+TEST(PartitionedSearch, PartsRefuseWhatTheyCannotCut) {
+  const PointSet points = random_cloud(100, 3, 1);
+  SearchOptions options;
+  options.horizon = 0.2;
+  EXPECT_THROW(cut_into_parts(points.view(), 0, options), Error);
+  EXPECT_THROW(cut_into_parts(points.view(), 65, options), Error);
+  options.box = {1, 1, 1};
+  EXPECT_THROW(search_in_parts(points.view(), 2, options), Error);
+  options.box = {0, 0, 0};
+  options.horizon = -1;
+  EXPECT_THROW(cut_into_parts(points.view(), 2, options), Error);
+}
+
 TEST(PartitionedSearch, PartsHoldEqualPointCounts) {
   const PointSet points = clustered_cloud(200000, 5, 0.5, 3, 4);
   SearchOptions options;
@@ -65,10 +134,9 @@ TEST(PartitionedSearch, UnsortedRowsHoldTheSameFamilies) {
   expect_same_families(unsorted, search(points.view(), options));
 }
 
-// The GPU parts' host side, without a GPU: each part's kept rows land at their places whether
-// they come alone or in runs of consecutive places (long runs are streamed), and halo rows,
-// staged among them, land nowhere.
-TEST(PartitionedSearch, PlacedRowsLandAtTheirPlacesAndHaloRowsNowhere) {
+// The GPU parts' host side, without a GPU: each part's rows land at their places whether they
+// come alone or in runs of consecutive places (long runs are streamed), in chunks of any size.
+TEST(PartitionedSearch, PlacedRowsLandAtTheirPlaces) {
   constexpr std::size_t n = 30000;
   std::mt19937 random(7);
   std::vector<int> owner(n), length(n);
@@ -84,21 +152,18 @@ TEST(PartitionedSearch, PlacedRowsLandAtTheirPlacesAndHaloRowsNowhere) {
   auto id = [](std::size_t g, int k) { return static_cast<point_id>(g * 7 + static_cast<std::size_t>(k)); };
   std::vector<point_id> indices(static_cast<std::size_t>(at[n]), -1);
   for (int p = 0; p < 2; ++p) {
-    std::vector<point_id> global, staged;
-    std::vector<std::uint8_t> keep;
+    std::vector<point_id> ids, staged;
     std::vector<std::int64_t> offsets{0};
     for (std::size_t g = 0; g < n; ++g) {
-      const bool owned = owner[g] == p, halo = !owned && random() % 5 == 0;
-      if (!owned && !halo) continue;
-      global.push_back(static_cast<point_id>(g));
-      keep.push_back(owned);
-      for (int k = 0; k < length[g]; ++k) staged.push_back(owned ? id(g, k) : -2);
+      if (owner[g] != p) continue;
+      ids.push_back(static_cast<point_id>(g));
+      for (int k = 0; k < length[g]; ++k) staged.push_back(id(g, k));
       offsets.push_back(static_cast<std::int64_t>(staged.size()));
     }
-    const detail::PartRows part{nullptr, keep, global};
-    for (std::size_t first = 0; first < global.size();) {  // chunks of 1 to 5000 rows
-      const std::size_t last = std::min(global.size(), first + 1 + random() % 5000);
-      detail::place_rows(part, offsets.data(), first, last, staged.data() + offsets[first], at.data(), indices.data());
+    const detail::PartRows part{nullptr, offsets, ids};
+    for (std::size_t first = 0; first < ids.size();) {  // chunks of 1 to 5000 rows
+      const std::size_t last = std::min(ids.size(), first + 1 + random() % 5000);
+      detail::place_rows(part, first, last, staged.data() + offsets[first], at.data(), indices.data());
       first = last;
     }
   }
@@ -137,6 +202,40 @@ TEST(PartitionedSearch, GpuPartsGiveTheSerialList) {
             for (const PartStats& part : stats.parts) entries += part.entries;
             EXPECT_EQ(entries, list.total());
           }
+}
+
+// Parts left on their GPUs (three on one GPU): the union of their rows, brought to the host, is
+// the one-GPU list; the ids on the GPU are the ids on the host; one part alone gives the same rows.
+TEST(PartitionedSearch, DevicePartsGiveTheOneGpuList) {
+  if (!gpu_or_skip()) GTEST_SKIP() << "no usable GPU";
+  for (int dims : {2, 3})
+    for (const Dataset& data : datasets(dims))
+      for (bool half : {false, true}) {
+        SearchOptions options = options_for(data, Metric::euclidean, 1, half, Backend::cuda);
+        const NeighborList one = search(data.points.view(), options);
+        options.devices = {0, 0, 0};
+        SearchStats stats;
+        const std::vector<DevicePart> parts = search_device_parts(data.points.view(), options, &stats);
+        ASSERT_EQ(parts.size(), 3u);
+        const NeighborList list = assembled(parts, data.points.size(), half, [&](const DevicePart& p) {
+          return p.rows.to_host(half);
+        });
+        ASSERT_EQ(list, one) << data.name << " dims " << dims << " half " << half;
+        const std::vector<PointPart> cut = cut_into_parts(data.points.view(), 3, options);
+        for (std::size_t p = 0; p < parts.size(); ++p) {
+#if defined(HORIZON_WITH_CUDA)
+          std::vector<point_id> ids(parts[p].ids.size());
+          ASSERT_EQ(cudaMemcpy(ids.data(), parts[p].device_ids.get(), ids.size() * sizeof(point_id),
+                               cudaMemcpyDeviceToHost), cudaSuccess);
+          EXPECT_EQ(ids, parts[p].ids);
+#endif
+          EXPECT_EQ(parts[p].halo, cut[p].halo.size());
+          EXPECT_EQ(stats.parts[p].entries, parts[p].rows.total());
+          const DevicePart alone = search_device_part(data.points.view(), cut[p], options);
+          EXPECT_EQ(alone.ids, parts[p].ids);
+          EXPECT_EQ(alone.rows.to_host(half), parts[p].rows.to_host(half));
+        }
+      }
 }
 
 TEST(PartitionedSearch, SeveralDevicesThroughSearchOptions) {

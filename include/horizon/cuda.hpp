@@ -6,12 +6,19 @@
 #include <cstdint>
 #include <memory>
 
+#include <vector>
+
 #include "horizon/error.hpp"
+#include "horizon/parts.hpp"
 #include "horizon/search.hpp"
 
 struct CUstream_st;
 
 namespace horizon {
+
+namespace detail {
+struct DeviceListAccess;
+}
 
 /// The same type as cudaStream_t; nullptr is the default stream.
 using cuda_stream = CUstream_st*;
@@ -34,6 +41,7 @@ public:
   std::int64_t total() const { return total_; }
   const std::int64_t* offsets() const { return offsets_.get(); }  ///< size()+1 entries
   const point_id* indices() const { return indices_.get(); }      ///< total() entries
+  cuda_stream stream() const { return stream_; }                   ///< the stream it was built on
   /// Copies the list to the host (on the stream it was built on).
   NeighborList to_host(bool half) const;
 
@@ -47,6 +55,7 @@ private:
   friend DeviceNeighborList search_device(const double*, std::size_t, int, const SearchOptions&,
                                           cuda_stream, SearchStats*);
   friend class DeviceVerletList;
+  friend struct detail::DeviceListAccess;
   std::unique_ptr<std::int64_t, Free> offsets_;
   std::unique_ptr<point_id, Free> indices_;
   cuda_stream stream_ = nullptr;
@@ -61,6 +70,32 @@ private:
 DeviceNeighborList search_device(const double* xyz, std::size_t count, int dims,
                                  const SearchOptions& options, cuda_stream stream = nullptr,
                                  SearchStats* stats = nullptr);
+
+/// One GPU's part of a search over several GPUs: the rows of the points it owns, in global ids,
+/// on its GPU (what OwnedRows is for an MPI rank). Ready when returned; its memory goes back to
+/// horizon's pool on its device when it is destroyed.
+struct DevicePart {
+  int device = 0;
+  std::size_t halo = 0;       ///< points within the horizon of its box, searched as references only
+  std::vector<point_id> ids;  ///< the global id of each row, ascending
+  std::unique_ptr<point_id, DeviceNeighborList::Free> device_ids;  ///< `ids`, on its GPU
+  /// Row r: the neighbours of point ids[r], as global ids, sorted when options.sort_rows; a half
+  /// list keeps j > i by global id. The union of all parts' rows is search()'s list.
+  DeviceNeighborList rows;
+};
+
+/// `points` (on the host) cut into one part per entry of options.devices (empty: options.device
+/// alone; a GPU may be named more than once) as cut_into_parts does, each part searched with its
+/// halo on its GPU, all at once, its rows left there. stats (optional) gets each part's points,
+/// entries and seconds. Throws DeviceOutOfMemory when a part's list does not fit on its GPU.
+std::vector<DevicePart> search_device_parts(PointView points, const SearchOptions& options,
+                                            SearchStats* stats = nullptr);
+
+/// One part of `points` (from cut_into_parts) searched on options.device, its rows left there.
+/// stats (optional): host_to_device_seconds (gathering and uploading the part's points) and
+/// kernel_seconds (the search and the rows' move to global ids).
+DevicePart search_device_part(PointView points, const PointPart& part, const SearchOptions& options,
+                              SearchStats* stats = nullptr);
 
 /// horizon keeps the GPU memory of finished searches in a per-device pool, so that repeated
 /// searches allocate nothing; this returns the unused part to the driver (after waiting for

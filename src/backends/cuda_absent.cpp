@@ -17,9 +17,8 @@ namespace {
 namespace detail {
 bool cuda_usable() { return false; }
 NeighborList search_cuda(PointView, const SearchOptions&, SearchStats&) { no_cuda(); }
-std::unique_ptr<DevicePart> search_on_device(PointView, std::span<const point_id>, const SearchOptions&) {
-  no_cuda();
-}
+DevicePart search_local_part(const LocalPart&, const SearchOptions&, SearchStats*) { no_cuda(); }
+Buffer<std::int64_t> host_offsets(const DevicePart&) { no_cuda(); }
 void copy_part_rows(const std::vector<PartRows>&, const std::int64_t*, point_id*) { no_cuda(); }
 }  // namespace detail
 

@@ -9,27 +9,31 @@
 #include <span>
 #include <thread>
 
+#include "cell_search.hpp"
 #include "device_part.hpp"
 #include "horizon/cuda.hpp"
 #include "horizon/decomposition.hpp"
 #include "horizon/error.hpp"
 #include "horizon/grid.hpp"
+#include "horizon/parts.hpp"
 #include "memory_check.hpp"
 #include "parallel_copy.hpp"
 #include "parallel_scan.hpp"
+#include "reference_search.hpp"
 
 namespace horizon::detail {
 namespace {
 
-/// One part. On the host path: the ids of the points it owns and of its halo (each ascending),
-/// then its local list (owned points first, then the halo) and `global`, the global id of each
-/// local point. A GPU part has only `global` (both ascending together) and `keep`.
+/// One part. Its owned points and its halo (each ascending); on the host path, its local
+/// list (owned points first, then the halo) and `global`, the global id of each local point. A
+/// GPU part's local points are its own and its halo in one ascending order (`global`), the
+/// owned ones at `owned_rows`; its rows stay on its GPU, their offsets also on the host.
 struct Part {
-  ScratchBuffer<point_id> owned, halo, global;
+  ScratchBuffer<point_id> owned, halo, global, owned_rows;
   NeighborList list;
   PartStats stats;
-  std::unique_ptr<DevicePart> on_device;  ///< its list, left on its GPU; keep[r]: local point r is its own
-  ScratchBuffer<std::uint8_t> keep;
+  DevicePart on_device;
+  Buffer<std::int64_t> offsets;
 };
 
 /// How many entries row i of a local list keeps (half lists: j > i by global id).
@@ -108,6 +112,67 @@ Membership membership(PointView points, const Decomposition& d, int parts, doubl
   return m;
 }
 
+/// Cuts `points` as search_parts does: the parts' boxes by RCB on a strided sample of at most
+/// 2^20 points (equal counts to within a fraction of a percent, without sorting all the
+/// points), then each point's owner and halo parts.
+Membership cut_points(PointView points, int count, double horizon) {
+  if (count < 1 || count > 64)  // the halo bits
+    throw Error(std::to_string(count) + " parts: from 1 to 64 are supported");
+  const std::size_t stride = std::max<std::size_t>(1, points.size() >> 20);
+  PointSet sample{points.dims(), {}};
+  for (std::size_t i = 0; i < points.size(); i += stride)
+    for (int a = 0; a < points.dims(); ++a) sample.xyz.push_back(points(i, a));
+  const Bounds box = bounds_of(points, omp_get_max_threads());
+  const Decomposition d = Decomposition::rcb(box, sample.view(), count);
+  return membership(points, d, count, halo_reach(box, points.dims(), horizon));
+}
+
+/// Part p's owned points and halo.
+void owned_and_halo(const Membership& m, std::size_t n, int p, Part& part) {
+  const std::uint64_t bit = std::uint64_t{1} << p;
+  part.owned = ids_where(n, [&](std::size_t i) { return m.owner[i] == p; });
+  part.halo = ids_where(n, [&](std::size_t i) { return (m.halo[i] & bit) != 0; });
+  part.stats.owned = part.owned.size();
+  part.stats.halo = part.halo.size();
+}
+
+/// Part p's local points for its GPU: its own and its halo in one ascending order.
+void local_points(const Membership& m, std::size_t n, int p, Part& part) {
+  const std::uint64_t bit = std::uint64_t{1} << p;
+  part.global = ids_where(n, [&](std::size_t i) { return m.owner[i] == p || (m.halo[i] & bit); });
+  part.owned_rows = ids_where(part.global.size(), [&](std::size_t r) { return m.owner[part.global[r]] == p; });
+  part.owned = ids_where(n, [&](std::size_t i) { return m.owner[i] == p; });
+  part.stats.owned = part.owned.size();
+  part.stats.halo = part.global.size() - part.owned.size();
+}
+
+/// Runs work(p) for every part on a thread of its own; the first failure is rethrown once all
+/// have ended.
+template <class Work>
+void on_each_part(int count, Work&& work) {
+  std::vector<std::exception_ptr> failures(static_cast<std::size_t>(count));
+  std::vector<std::thread> threads;
+  for (int p = 0; p < count; ++p)
+    threads.emplace_back([&, p] {
+      try {
+        work(p);
+      } catch (...) {
+        failures[static_cast<std::size_t>(p)] = std::current_exception();
+      }
+    });
+  for (auto& t : threads) t.join();
+  for (const auto& failure : failures)
+    if (failure) std::rethrow_exception(failure);
+}
+
+/// The checks of a search cut into parts: points, horizon, open boundaries.
+void check_parts_input(PointView points, const SearchOptions& options) {
+  validate(points);
+  validate_horizon(options.horizon, options.cells_per_horizon);
+  if (is_periodic(options) || needs_cell_search(options))
+    throw Error("a search in parts is for open boundaries: no periodic box, cell or pair outputs");
+}
+
 /// The coordinates of points global[0], global[1], ... (in `xyz`), as a view.
 PointView gather(PointView points, std::span<const point_id> global, ScratchBuffer<double>& xyz) {
   const int dims = points.dims();
@@ -118,16 +183,17 @@ PointView gather(PointView points, std::span<const point_id> global, ScratchBuff
   return PointView(xyz.data(), global.size(), dims);
 }
 
-/// Searches a part on its GPU, its list left there: its points and its halo in one ascending
-/// order (part.global), every one a row (the halo's, incomplete, are not copied).
+/// Searches a part on its GPU, its rows left there (part.global and part.owned_rows set).
 void search_part_on_device(PointView points, Part& part, const SearchOptions& part_options) {
   const auto start = std::chrono::steady_clock::now();
   SearchOptions options = part_options;
   options.devices.clear();
   ScratchBuffer<double> xyz;
-  part.on_device = search_on_device(gather(points, part.global, xyz), part.global, options);
+  SearchStats stats;
+  part.on_device = search_local_part({gather(points, part.global, xyz), part.global, part.owned_rows}, options, &stats);
   part.stats.device = part_options.device;
-  part.stats.build_seconds = part.stats.seconds = seconds_since(start);
+  part.stats.build_seconds = stats.kernel_seconds;
+  part.stats.seconds = seconds_since(start);
 }
 
 /// Searches a part: owned points first, then its halo, as references only.
@@ -158,27 +224,22 @@ void search_part(PointView points, Part& part, const SearchOptions& part_options
 
 }  // namespace
 
-void place_rows(const PartRows& part, const std::int64_t* offsets, std::size_t first, std::size_t last,
-                const point_id* staged, const std::int64_t* at, point_id* indices) {
-  // Kept rows whose places follow one another (a part's points are often runs of consecutive
-  // ids) go as one copy, streamed past the caches when long: like the one-GPU path's copy,
-  // the destination is then not read before it is written.
+void place_rows(const PartRows& part, std::size_t first, std::size_t last, const point_id* staged,
+                const std::int64_t* at, point_id* indices) {
+  // Rows whose places follow one another (a part's points are often runs of consecutive ids)
+  // go as one copy, streamed past the caches when long: like the one-GPU path's copy, the
+  // destination is then not read before it is written.
   constexpr std::int64_t block = 1024;
   constexpr std::size_t stream_from = std::size_t{4} << 10;
+  const std::int64_t* offsets = part.offsets.data();
   const auto blocks = (static_cast<std::int64_t>(last - first) + block - 1) / block;
 #pragma omp parallel for schedule(dynamic, 1)
   for (std::int64_t b = 0; b < blocks; ++b) {
     const std::size_t end = std::min(last, first + static_cast<std::size_t>((b + 1) * block));
     for (std::size_t r = first + static_cast<std::size_t>(b * block); r < end;) {
-      if (!part.keep[r]) {
-        ++r;
-        continue;
-      }
-      const std::int64_t place = at[part.global[r]];
+      const std::int64_t place = at[part.ids[r]];
       std::size_t run_end = r + 1;
-      while (run_end < end && part.keep[run_end] &&
-             at[part.global[run_end]] == place + (offsets[run_end] - offsets[r]))
-        ++run_end;
+      while (run_end < end && at[part.ids[run_end]] == place + (offsets[run_end] - offsets[r])) ++run_end;
       const auto bytes = static_cast<std::size_t>(offsets[run_end] - offsets[r]) * sizeof(point_id);
       const point_id* from = staged + (offsets[r] - offsets[first]);
       if (bytes >= stream_from)
@@ -190,7 +251,7 @@ void place_rows(const PartRows& part, const std::int64_t* offsets, std::size_t f
   }
 }
 
-NeighborList rows_in_global_ids(const NeighborList& list, const std::vector<point_id>& global, std::size_t owned,
+NeighborList rows_in_global_ids(const NeighborList& list, std::span<const point_id> global, std::size_t owned,
                                 bool half, bool sort_rows, std::size_t references_from) {
   if (references_from == SIZE_MAX) references_from = owned;
   Buffer<std::int64_t> offsets(owned + 1);
@@ -210,98 +271,50 @@ NeighborList search_parts(PointView points, const SearchOptions& options,
                           const std::vector<SearchOptions>& part_options, SearchStats& stats) {
   auto clock = std::chrono::steady_clock::now();
   const int count = static_cast<int>(part_options.size());
-  if (count > 64) throw Error(std::to_string(count) + " parts: at most 64 are supported");  // the halo bits
-  // Cuts placed on a strided sample of at most 2^20 points: equal counts to within a fraction
-  // of a percent, without sorting all the points.
-  const std::size_t stride = std::max<std::size_t>(1, points.size() >> 20);
-  PointSet sample{points.dims(), {}};
-  for (std::size_t i = 0; i < points.size(); i += stride)
-    for (int a = 0; a < points.dims(); ++a) sample.xyz.push_back(points(i, a));
-  const Bounds box = bounds_of(points, omp_get_max_threads());
-  const Decomposition d = Decomposition::rcb(box, sample.view(), count);
+  const Membership m = cut_points(points, count, options.horizon);
+  const std::size_t n = points.size();
   std::vector<Part> parts(static_cast<std::size_t>(count));
-  const Membership m = membership(points, d, count, halo_reach(box, points.dims(), options.horizon));
-  // GPU parts keep their lists on their GPUs until each row is copied to its place; a list
-  // that does not fit there takes the host path (in batches) and the assembly below.
+  // GPU parts keep their rows on their GPUs until each row is copied to its place; a part that
+  // does not fit there sends every part down the host path (in batches) and the assembly below.
   bool on_devices = options.queries == 0 &&
                     std::all_of(part_options.begin(), part_options.end(),
                                 [](const SearchOptions& o) { return o.backend == Backend::cuda; });
-  auto part_points = [&](bool on_device) {
-    for (int p = 0; p < count; ++p) {
-      Part& part = parts[static_cast<std::size_t>(p)];
-      const std::uint64_t bit = std::uint64_t{1} << p;
-      if (on_device) {  // its points and halo in one ascending order, its own marked
-        part.global = ids_where(points.size(), [&](std::size_t i) { return m.owner[i] == p || (m.halo[i] & bit); });
-        part.keep.resize(part.global.size());
-#pragma omp parallel for schedule(static)
-        for (std::int64_t r = 0; r < static_cast<std::int64_t>(part.global.size()); ++r)
-          part.keep[r] = m.owner[part.global[r]] == p;
-        part.stats.owned = static_cast<std::size_t>(std::count(part.keep.begin(), part.keep.end(), 1));
-        part.stats.halo = part.global.size() - part.stats.owned;
-      } else {
-        part.owned = ids_where(points.size(), [&](std::size_t i) { return m.owner[i] == p; });
-        part.halo = ids_where(points.size(), [&](std::size_t i) { return (m.halo[i] & bit) != 0; });
-        part.stats.owned = part.owned.size();
-        part.stats.halo = part.halo.size();
-      }
-    }
-  };
-  part_points(on_devices);
+  for (int p = 0; p < count; ++p)
+    if (on_devices) local_points(m, n, p, parts[p]);
+    else owned_and_halo(m, n, p, parts[p]);
   stats.partition_seconds = seconds_since(clock);
 
-  // Each part on its own thread; the first failure is rethrown once all have ended.
-  auto on_each_part = [&](auto&& work) {
-    std::vector<std::exception_ptr> failures(static_cast<std::size_t>(count));
-    std::vector<std::thread> threads;
-    for (int p = 0; p < count; ++p)
-      threads.emplace_back([&, p] {
-        try {
-          work(parts[p], part_options[p]);
-        } catch (...) {
-          failures[p] = std::current_exception();
-        }
-      });
-    for (auto& t : threads) t.join();
-    for (const auto& failure : failures)
-      if (failure) std::rethrow_exception(failure);
-  };
   clock = std::chrono::steady_clock::now();
   if (on_devices) {
     try {
-      on_each_part([&](Part& part, const SearchOptions& o) { search_part_on_device(points, part, o); });
+      on_each_part(count, [&](int p) {
+        search_part_on_device(points, parts[p], part_options[p]);
+        parts[p].offsets = host_offsets(parts[p].on_device);
+      });
     } catch (const DeviceOutOfMemory&) {
       on_devices = false;
-      for (Part& part : parts) part.on_device.reset();
-      part_points(false);
+      for (int p = 0; p < count; ++p) {
+        parts[p] = Part();
+        owned_and_halo(m, n, p, parts[p]);
+      }
     }
   }
-  if (!on_devices) on_each_part([&](Part& part, const SearchOptions& o) { search_part(points, part, o); });
+  if (!on_devices) on_each_part(count, [&](int p) { search_part(points, parts[p], part_options[p]); });
   const double parts_seconds = seconds_since(clock);
 
-  // Rows in input order, each written once, in global ids, straight from its part's list.
+  // Rows in input order, each written once, in global ids, straight from its part's rows.
   clock = std::chrono::steady_clock::now();
-  const std::size_t n = points.size();
   Buffer<std::int64_t> offsets(n + 1);
   offsets[0] = 0;
   for (Part& part : parts) {
     std::int64_t entries = 0;
-    if (on_devices) {
-      const Buffer<std::int64_t>& local = part.on_device->offsets();
-      const auto rows = static_cast<std::int64_t>(part.global.size());
+    const auto rows = static_cast<std::int64_t>(part.owned.size());
 #pragma omp parallel for schedule(static) reduction(+ : entries)
-      for (std::int64_t r = 0; r < rows; ++r)
-        if (part.keep[static_cast<std::size_t>(r)]) {
-          offsets[static_cast<std::size_t>(part.global[r]) + 1] = local[r + 1] - local[r];
-          entries += local[r + 1] - local[r];
-        }
-    } else {
-      const auto rows = static_cast<std::int64_t>(part.owned.size());
-#pragma omp parallel for schedule(static) reduction(+ : entries)
-      for (std::int64_t r = 0; r < rows; ++r) {
-        const std::int64_t size = kept(part.list, static_cast<std::size_t>(r), part.global, options.half);
-        offsets[static_cast<std::size_t>(part.owned[r]) + 1] = size;
-        entries += size;
-      }
+    for (std::int64_t r = 0; r < rows; ++r) {
+      const std::int64_t size = on_devices ? part.offsets[r + 1] - part.offsets[r]
+                                           : kept(part.list, static_cast<std::size_t>(r), part.global, options.half);
+      offsets[static_cast<std::size_t>(part.owned[r]) + 1] = size;
+      entries += size;
     }
     part.stats.entries = entries;
   }
@@ -312,7 +325,7 @@ NeighborList search_parts(PointView points, const SearchOptions& options,
     // Faulted in first, on all cores: the rows then arrive at copy speed.
     parallel_touch(indices.data(), indices.size() * sizeof(point_id));
     std::vector<PartRows> rows;
-    for (const Part& part : parts) rows.push_back({part.on_device.get(), part.keep, part.global});
+    for (const Part& part : parts) rows.push_back({&part.on_device, part.offsets, part.owned});
     copy_part_rows(rows, offsets.data(), indices.data());
   } else {
     for (Part& part : parts) {
@@ -334,3 +347,94 @@ NeighborList search_parts(PointView points, const SearchOptions& options,
 }
 
 }  // namespace horizon::detail
+
+namespace horizon {
+
+std::vector<PointPart> cut_into_parts(PointView points, int parts, const SearchOptions& options) {
+  detail::check_parts_input(points, options);
+  const detail::Membership m = detail::cut_points(points, parts, options.horizon);
+  std::vector<PointPart> cut(static_cast<std::size_t>(parts));
+  for (int p = 0; p < parts; ++p) {
+    detail::Part part;
+    detail::owned_and_halo(m, points.size(), p, part);
+    cut[p].owned.assign(part.owned.begin(), part.owned.end());
+    cut[p].halo.assign(part.halo.begin(), part.halo.end());
+  }
+  return cut;
+}
+
+std::vector<OwnedPart> search_in_parts(PointView points, int parts, const SearchOptions& options) {
+  detail::check_parts_input(points, options);
+  const detail::Membership m = detail::cut_points(points, parts, options.horizon);
+  std::vector<OwnedPart> result(static_cast<std::size_t>(parts));
+  for (int p = 0; p < parts; ++p) {
+    detail::Part part;
+    detail::owned_and_halo(m, points.size(), p, part);
+    detail::search_part(points, part, options);
+    result[p].rows = detail::rows_in_global_ids(part.list, part.global, part.owned.size(), options.half, options.sort_rows);
+    result[p].ids.assign(part.owned.begin(), part.owned.end());
+    result[p].halo = part.halo.size();
+  }
+  return result;
+}
+
+std::vector<DevicePart> search_device_parts(PointView points, const SearchOptions& options, SearchStats* stats) {
+  detail::check_parts_input(points, options);
+  const std::vector<int> devices = options.devices.empty() ? std::vector<int>{options.device} : options.devices;
+  const int count = static_cast<int>(devices.size());
+  auto clock = std::chrono::steady_clock::now();
+  const detail::Membership m = detail::cut_points(points, count, options.horizon);
+  std::vector<detail::Part> parts(static_cast<std::size_t>(count));
+  for (int p = 0; p < count; ++p) detail::local_points(m, points.size(), p, parts[p]);
+  const double partition_seconds = detail::seconds_since(clock);
+  clock = std::chrono::steady_clock::now();
+  detail::on_each_part(count, [&](int p) {
+    SearchOptions one = options;
+    one.backend = Backend::cuda;
+    one.device = devices[static_cast<std::size_t>(p)];
+    detail::search_part_on_device(points, parts[p], one);
+    parts[p].on_device.ids.assign(parts[p].owned.begin(), parts[p].owned.end());
+    parts[p].stats.entries = parts[p].on_device.rows.total();
+  });
+  std::vector<DevicePart> result;
+  if (stats) {
+    *stats = SearchStats{};
+    stats->backend = Backend::cuda;
+    stats->threads = count;
+    stats->partition_seconds = partition_seconds;
+    stats->search_seconds = partition_seconds + detail::seconds_since(clock);
+  }
+  for (detail::Part& part : parts) {
+    if (stats) stats->parts.push_back(part.stats);
+    result.push_back(std::move(part.on_device));
+  }
+  return result;
+}
+
+DevicePart search_device_part(PointView points, const PointPart& part, const SearchOptions& options,
+                              SearchStats* stats) {
+  detail::check_parts_input(points, options);
+  // The local points: the owned ones and the halo merged into one ascending order.
+  const std::size_t n = points.size();
+  std::vector<point_id> global(part.owned.size() + part.halo.size());
+  std::merge(part.owned.begin(), part.owned.end(), part.halo.begin(), part.halo.end(), global.begin());
+  for (std::size_t r = 0; r < global.size(); ++r)
+    if (global[r] < 0 || static_cast<std::size_t>(global[r]) >= n || (r > 0 && global[r] <= global[r - 1]))
+      throw Error("part: its owned and halo ids must ascend, be distinct and lie in 0.." + std::to_string(n - 1) +
+                  " (id " + std::to_string(global[r]) + ")");
+  std::vector<point_id> owned_rows;
+  owned_rows.reserve(part.owned.size());
+  for (std::size_t r = 0, k = 0; r < global.size(); ++r)
+    if (k < part.owned.size() && global[r] == part.owned[k]) {
+      owned_rows.push_back(static_cast<point_id>(r));
+      ++k;
+    }
+  ScratchBuffer<double> xyz;
+  SearchStats local;
+  DevicePart result = detail::search_local_part({detail::gather(points, global, xyz), global, owned_rows}, options,
+                                                stats ? stats : &local);
+  result.ids = part.owned;
+  return result;
+}
+
+}  // namespace horizon

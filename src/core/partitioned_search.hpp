@@ -4,6 +4,7 @@
 // is searched, with the points within the horizon of its box as references only, by its own
 // host thread; its rows, mapped to global ids, are then copied into the list in input order.
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "horizon/search.hpp"
@@ -16,7 +17,7 @@ namespace horizon::detail {
 /// merge sorts it. Half lists keep j > i by global id (local ids do not order globally).
 /// Shared by the multi-device driver and the distributed search; parallel over rows. For a list
 /// of queries among local references, `references_from` is where the second run starts.
-NeighborList rows_in_global_ids(const NeighborList& list, const std::vector<point_id>& global, std::size_t owned,
+NeighborList rows_in_global_ids(const NeighborList& list, std::span<const point_id> global, std::size_t owned,
                                 bool half, bool sort_rows, std::size_t references_from = SIZE_MAX);
 
 /// The list of `points` from one search per entry of `part_options` (each a node-local search:

@@ -1,9 +1,10 @@
 #pragma once
 // Included at the end of search.cu only (it uses the host path's stream pool, upload and
-// staging): a part of a multi-GPU search whose list stays on its GPU (core/device_part.hpp).
+// staging): a part of a multi-GPU search whose rows stay on its GPU (core/device_part.hpp).
 #include <cuda_runtime.h>
 
 #include <algorithm>
+#include <chrono>
 #include <memory>
 #include <span>
 #include <vector>
@@ -14,6 +15,21 @@
 #include "horizon/cuda.hpp"
 
 namespace horizon::detail {
+
+/// Builds and edits DeviceNeighborLists outside search_device.
+struct DeviceListAccess {
+  static point_id* indices(DeviceNeighborList& list) { return list.indices_.get(); }
+  static void set_offsets(DeviceNeighborList& list, std::int64_t* offsets, point_id* indices, std::size_t rows,
+                          std::int64_t total, cudaStream_t stream) {
+    const DeviceNeighborList::Free free{stream};
+    list.offsets_ = {offsets, free};
+    list.indices_ = {indices, free};
+    list.points_ = rows;
+    list.total_ = total;
+    list.stream_ = stream;
+  }
+};
+
 namespace {
 
 __global__ void to_global_ids(point_id* ids, std::int64_t count, const point_id* global) {
@@ -22,114 +38,203 @@ __global__ void to_global_ids(point_id* ids, std::int64_t count, const point_id*
     ids[e] = global[ids[e]];
 }
 
+/// For owned row k (local row rows[k]): its length and its point's global id.
+__global__ void owned_row_sizes(const std::int64_t* offsets, const point_id* rows, std::int64_t count,
+                                const point_id* global, std::int64_t* sizes, point_id* ids) {
+  const std::int64_t stride = static_cast<std::int64_t>(gridDim.x) * blockDim.x;
+  for (std::int64_t k = static_cast<std::int64_t>(blockIdx.x) * blockDim.x + threadIdx.x; k < count; k += stride) {
+    const point_id r = rows[k];
+    sizes[k] = offsets[r + 1] - offsets[r];
+    ids[k] = global[r];
+  }
+}
+
+/// Owned row k copied to out + out_offsets[k], its ids mapped to global ids: a warp per row,
+/// its lanes on consecutive entries (coalesced reads and writes).
+__global__ void copy_owned_rows(const std::int64_t* offsets, const point_id* rows, std::int64_t count,
+                                const std::int64_t* out_offsets, const point_id* global, const point_id* in,
+                                point_id* out) {
+  const int lane = static_cast<int>(threadIdx.x % 32);
+  const std::int64_t warps = static_cast<std::int64_t>(gridDim.x) * (blockDim.x / 32);
+  for (std::int64_t k = (static_cast<std::int64_t>(blockIdx.x) * blockDim.x + threadIdx.x) / 32; k < count;
+       k += warps) {
+    const std::int64_t from = offsets[rows[k]], size = offsets[rows[k] + 1] - from;
+    point_id* to = out + out_offsets[k];
+    for (std::int64_t e = lane; e < size; e += 32) to[e] = global[in[from + e]];
+  }
+}
+
 constexpr std::int64_t ids_per_buffer = static_cast<std::int64_t>(staging_bytes / sizeof(point_id));
 
-/// Rows [first, last) of a part's list: one staging buffer's worth, or a single longer row.
+/// Rows [first, last) of a part: one staging buffer's worth, or a single longer row.
 struct Chunk {
   std::size_t first, last;
 };
 
-class DevicePartOnGpu final : public DevicePart {
-public:
-  DevicePartOnGpu(PointView local, std::span<const point_id> global, const SearchOptions& options)
-      : device_(options.device), lease_(options.device) {
-    const cudaStream_t stream = lease_.get();
-    MemoryMeter meter(device_, stream, options.gpu_max_memory);
-    {
-      DeviceArray<double> xyz(local.size() * static_cast<std::size_t>(local.dims()), meter);
-      upload_coordinates(xyz.get(), local, stream);
-      list_ = search_device(xyz.get(), local.size(), local.dims(), options, stream);
-    }
-    if (list_.total() > 0) {
-      DeviceArray<point_id> map(global.size(), meter);
-      HORIZON_CUDA_CHECK(cudaMemcpyAsync(map.get(), global.data(), global.size() * sizeof(point_id),
-                                         cudaMemcpyHostToDevice, stream));
-      // The list is this object's own: its ids are rewritten in place.
-      auto* ids = const_cast<point_id*>(list_.indices());
-      to_global_ids<<<std::min(blocks_for(static_cast<std::size_t>(list_.total())), 8192u), block_size, 0, stream>>>(
-          ids, list_.total(), map.get());
-      check_launch("to_global_ids");
-    }
-    offsets_.resize(local.size() + 1);
-    copy_to_host(offsets_.data(), list_.offsets(), offsets_.size() * sizeof(std::int64_t), stream);
-    for (std::size_t first = 0, rows = local.size(); first < rows;) {
-      const auto end = std::upper_bound(offsets_.begin() + first + 1, offsets_.end(), offsets_[first] + ids_per_buffer);
-      const std::size_t last = std::max(static_cast<std::size_t>(end - offsets_.begin()) - 1, first + 1);
-      chunks_.push_back({first, last});
-      first = last;
-    }
+std::vector<Chunk> chunks_of(std::span<const std::int64_t> offsets) {
+  std::vector<Chunk> chunks;
+  for (std::size_t first = 0, rows = offsets.size() - 1; first < rows;) {
+    const auto end = std::upper_bound(offsets.begin() + first + 1, offsets.end(), offsets[first] + ids_per_buffer);
+    const std::size_t last = std::max(static_cast<std::size_t>(end - offsets.begin()) - 1, first + 1);
+    chunks.push_back({first, last});
+    first = last;
   }
+  return chunks;
+}
 
-  const Buffer<std::int64_t>& offsets() const override { return offsets_; }
+/// A part's rows coming back to the host chunk by chunk, through a pair of staging buffers.
+class PartCopy {
+public:
+  PartCopy(const PartRows& rows) : rows_(rows), chunks_(chunks_of(rows.offsets)) {}
   const std::vector<Chunk>& chunks() const { return chunks_; }
-  std::int64_t entries(const Chunk& c) const { return offsets_[c.last] - offsets_[c.first]; }
 
   /// Starts chunk c's copy into staging buffer c % 2 (a row longer than a buffer: nothing).
-  void issue(std::size_t c, Staging& staging) const {
-    select_device(device_);
-    const Chunk& chunk = chunks_[c];
-    if (entries(chunk) > ids_per_buffer) return;
-    if (entries(chunk) > 0)
-      HORIZON_CUDA_CHECK(cudaMemcpyAsync(staging.buffer(c % 2), list_.indices() + offsets_[chunk.first],
-                                         static_cast<std::size_t>(entries(chunk)) * sizeof(point_id),
-                                         cudaMemcpyDeviceToHost, lease_.get()));
-    HORIZON_CUDA_CHECK(cudaEventRecord(staging.done(c % 2), lease_.get()));
+  void issue(std::size_t c) {
+    select_device(rows_.part->device);
+    if (entries(c) > ids_per_buffer) return;
+    if (entries(c) > 0)
+      HORIZON_CUDA_CHECK(cudaMemcpyAsync(staging_->buffer(c % 2), source(c), bytes(c), cudaMemcpyDeviceToHost, stream()));
+    HORIZON_CUDA_CHECK(cudaEventRecord(staging_->done(c % 2), stream()));
   }
 
   /// Chunk c's ids once they are on the host: in its staging buffer, or (a single long row)
-  /// copied straight to `row_at` (nullptr: not wanted).
-  const point_id* arrived(std::size_t c, Staging& staging, point_id* row_at) const {
-    select_device(device_);
-    const Chunk& chunk = chunks_[c];
-    if (entries(chunk) > ids_per_buffer) {
-      if (row_at)
-        HORIZON_CUDA_CHECK(cudaMemcpyAsync(row_at, list_.indices() + offsets_[chunk.first],
-                                           static_cast<std::size_t>(entries(chunk)) * sizeof(point_id),
-                                           cudaMemcpyDeviceToHost, lease_.get()));
-      HORIZON_CUDA_CHECK(cudaStreamSynchronize(lease_.get()));
+  /// copied straight to its place (nullptr then).
+  const point_id* arrived(std::size_t c, const std::int64_t* at, point_id* indices) {
+    select_device(rows_.part->device);
+    if (entries(c) > ids_per_buffer) {
+      HORIZON_CUDA_CHECK(cudaMemcpyAsync(indices + at[rows_.ids[chunks_[c].first]], source(c), bytes(c),
+                                         cudaMemcpyDeviceToHost, stream()));
+      HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream()));
       return nullptr;
     }
-    HORIZON_CUDA_CHECK(cudaEventSynchronize(staging.done(c % 2)));
-    return reinterpret_cast<const point_id*>(staging.buffer(c % 2));
+    HORIZON_CUDA_CHECK(cudaEventSynchronize(staging_->done(c % 2)));
+    return reinterpret_cast<const point_id*>(staging_->buffer(c % 2));
   }
 
 private:
-  int device_;
-  StreamLease lease_;  // outlives list_, which is freed on its stream
-  DeviceNeighborList list_;
-  Buffer<std::int64_t> offsets_;
+  std::int64_t entries(std::size_t c) const { return rows_.offsets[chunks_[c].last] - rows_.offsets[chunks_[c].first]; }
+  std::size_t bytes(std::size_t c) const { return static_cast<std::size_t>(entries(c)) * sizeof(point_id); }
+  const point_id* source(std::size_t c) const { return rows_.part->rows.indices() + rows_.offsets[chunks_[c].first]; }
+  cudaStream_t stream() const { return reinterpret_cast<cudaStream_t>(rows_.part->rows.stream()); }
+  PartRows rows_;
   std::vector<Chunk> chunks_;
+  StagingLease staging_;
 };
 
 }  // namespace
 
-std::unique_ptr<DevicePart> search_on_device(PointView local, std::span<const point_id> global,
-                                             const SearchOptions& options) {
+DevicePart search_local_part(const LocalPart& part, const SearchOptions& given, SearchStats* stats) {
+  SearchOptions options = given;
+  options.devices.clear();
+  options.queries = 0;
+  if (options.device >= max_devices) throw Error("CUDA device " + std::to_string(options.device) + " is past the 64 supported");
   select_device(options.device);
-  return std::make_unique<DevicePartOnGpu>(local, global, options);
+  // The stream goes back to the pool at the end, but pooled streams live as long as the
+  // process: the part's arrays are freed on it whenever the part is destroyed.
+  const StreamLease lease(options.device);
+  const cudaStream_t stream = lease.get();
+  MemoryMeter meter(options.device, stream, options.gpu_max_memory);
+  const std::size_t n = part.points.size(), owned = part.owned_rows.size();
+  DevicePart result;
+  result.device = options.device;
+  result.halo = n - owned;
+
+  auto clock = std::chrono::steady_clock::now();
+  DeviceArray<point_id> global(n, meter), rows(owned, meter);
+  DeviceNeighborList local;
+  {
+    DeviceArray<double> xyz(n * static_cast<std::size_t>(part.points.dims()), meter);
+    if (n > 0) upload_coordinates(xyz.get(), part.points, stream);
+    HORIZON_CUDA_CHECK(cudaMemcpyAsync(global.get(), part.global.data(), global.bytes(), cudaMemcpyHostToDevice, stream));
+    HORIZON_CUDA_CHECK(cudaMemcpyAsync(rows.get(), part.owned_rows.data(), rows.bytes(), cudaMemcpyHostToDevice, stream));
+    HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
+    if (stats) stats->host_to_device_seconds = seconds_since(clock);
+    clock = std::chrono::steady_clock::now();
+    local = search_device(xyz.get(), n, part.points.dims(), options, stream);
+  }
+
+  // The owned rows' offsets and global ids, then (with a halo) the rows themselves moved into
+  // a list of their own; without one, the local list is the part's, its ids mapped in place.
+  DeviceArray<std::int64_t> offsets(owned + 1, meter), sizes(owned, meter);
+  DeviceArray<point_id> ids(owned, meter);
+  HORIZON_CUDA_CHECK(cudaMemsetAsync(offsets.get(), 0, sizeof(std::int64_t), stream));
+  if (owned > 0) {
+    owned_row_sizes<<<std::min(blocks_for(owned), 8192u), block_size, 0, stream>>>(
+        local.offsets(), rows.get(), static_cast<std::int64_t>(owned), global.get(), sizes.get(), ids.get());
+    check_launch("owned_row_sizes");
+    std::size_t temp_bytes = 0;
+    HORIZON_CUDA_CHECK(cub::DeviceScan::InclusiveSum(nullptr, temp_bytes, sizes.get(), offsets.get() + 1,
+                                                     static_cast<std::int64_t>(owned), stream));
+    DeviceArray<char> temp(temp_bytes, meter);
+    HORIZON_CUDA_CHECK(cub::DeviceScan::InclusiveSum(temp.get(), temp_bytes, sizes.get(), offsets.get() + 1,
+                                                     static_cast<std::int64_t>(owned), stream));
+  }
+  sizes.reset();
+  std::int64_t total = 0;
+  HORIZON_CUDA_CHECK(cudaMemcpyAsync(&total, offsets.get() + owned, sizeof(total), cudaMemcpyDeviceToHost, stream));
+  HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
+  if (owned == n) {
+    if (total > 0) {
+      to_global_ids<<<std::min(blocks_for(static_cast<std::size_t>(total)), 8192u), block_size, 0, stream>>>(
+          DeviceListAccess::indices(local), total, global.get());
+      check_launch("to_global_ids");
+    }
+    result.rows = std::move(local);
+  } else {
+    const std::size_t needed = static_cast<std::size_t>(total) * sizeof(point_id);
+    if (needed > available_device_bytes(meter))
+      throw DeviceOutOfMemory("GPU " + std::to_string(options.device) + ": the part's rows need " +
+                                  std::to_string(needed) + " bytes beside its search's list, " +
+                                  std::to_string(available_device_bytes(meter)) + " are free",
+                              needed, available_device_bytes(meter));
+    DeviceArray<point_id> out(static_cast<std::size_t>(total), meter);
+    if (total > 0) {
+      const std::size_t warps = std::min<std::size_t>(owned, std::size_t{1} << 18);
+      copy_owned_rows<<<blocks_for(warps * 32), block_size, 0, stream>>>(
+          local.offsets(), rows.get(), static_cast<std::int64_t>(owned), offsets.get(), global.get(),
+          local.indices(), out.get());
+      check_launch("copy_owned_rows");
+    }
+    DeviceListAccess::set_offsets(result.rows, offsets.release(), out.release(), owned, total, stream);
+    local = DeviceNeighborList();  // freed on the stream, after the copy
+  }
+  result.device_ids = {ids.release(), DeviceNeighborList::Free{stream}};
+  HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
+  if (stats) {
+    stats->backend = Backend::cuda;
+    stats->kernel_seconds = stats->search_seconds = seconds_since(clock);
+    stats->peak_gpu_bytes = meter.peak;
+  }
+  return result;
+}
+
+Buffer<std::int64_t> host_offsets(const DevicePart& part) {
+  select_device(part.device);
+  Buffer<std::int64_t> offsets(part.rows.size() + 1);
+  copy_to_host(offsets.data(), part.rows.offsets(), offsets.size() * sizeof(std::int64_t),
+               reinterpret_cast<cudaStream_t>(part.rows.stream()));
+  return offsets;
 }
 
 // Each part's chunks come back through its own pair of staging buffers, the next chunk of every
 // part under way while all cores place the rows of the chunks that have arrived: no thread per
 // part, whose OpenMP teams would share the cores.
 void copy_part_rows(const std::vector<PartRows>& parts, const std::int64_t* at, point_id* indices) {
-  auto part_of = [&](std::size_t p) -> const DevicePartOnGpu& { return *static_cast<const DevicePartOnGpu*>(parts[p].part); };
-  std::vector<std::unique_ptr<StagingLease>> staging;
+  std::vector<std::unique_ptr<PartCopy>> copies;
   std::size_t most = 0;
-  for (std::size_t p = 0; p < parts.size(); ++p) {
-    staging.push_back(std::make_unique<StagingLease>());
-    most = std::max(most, part_of(p).chunks().size());
-    if (!part_of(p).chunks().empty()) part_of(p).issue(0, **staging[p]);
+  for (const PartRows& rows : parts) {
+    copies.push_back(std::make_unique<PartCopy>(rows));
+    most = std::max(most, copies.back()->chunks().size());
+    if (!copies.back()->chunks().empty()) copies.back()->issue(0);
   }
   for (std::size_t c = 0; c < most; ++c) {
-    for (std::size_t p = 0; p < parts.size(); ++p)
-      if (c + 1 < part_of(p).chunks().size()) part_of(p).issue(c + 1, **staging[p]);
+    for (auto& copy : copies)
+      if (c + 1 < copy->chunks().size()) copy->issue(c + 1);
     for (std::size_t p = 0; p < parts.size(); ++p) {
-      if (c >= part_of(p).chunks().size()) continue;
-      const Chunk chunk = part_of(p).chunks()[c];
-      point_id* row_at = parts[p].keep[chunk.first] ? indices + at[parts[p].global[chunk.first]] : nullptr;
-      if (const point_id* staged = part_of(p).arrived(c, **staging[p], row_at))
-        place_rows(parts[p], part_of(p).offsets().data(), chunk.first, chunk.last, staged, at, indices);
+      if (c >= copies[p]->chunks().size()) continue;
+      const Chunk chunk = copies[p]->chunks()[c];
+      if (const point_id* staged = copies[p]->arrived(c, at, indices))
+        place_rows(parts[p], chunk.first, chunk.last, staged, at, indices);
     }
   }
 }
