@@ -20,7 +20,7 @@ from . import _horizon
 
 __version__ = _horizon.__version__  # the C++ library's, set by CMake's project(VERSION)
 
-__all__ = ["__version__", "search", "neighbor_list", "primitive_neighbor_list", "warm_up", "NeighborList", "DeviceNeighborList", "VerletList", "load", "lattice", "random_cloud", "clustered_cloud", "backend_available"]
+__all__ = ["__version__", "search", "neighbor_list", "primitive_neighbor_list", "warm_up", "NeighborList", "DeviceNeighborList", "DevicePart", "VerletList", "load", "lattice", "random_cloud", "clustered_cloud", "backend_available"]
 
 
 class NeighborList:
@@ -246,6 +246,24 @@ class DeviceNeighborList:
         return NeighborList(owned.offsets, owned.indices, self.half)
 
 
+class DevicePart(DeviceNeighborList):
+    """One GPU's part of search(..., keep_on_device=True): the rows of the points it owns, their
+    neighbours as global ids, in its GPU's memory. ids (NumPy, int32) and device_ids (GPU) give
+    the global id of each row; halo is the number of points it searched as references only."""
+
+    def __init__(self, owned, half):
+        super().__init__(owned, half)
+        self.ids = owned.ids
+        self.ids.flags.writeable = False
+        self.device_ids = _CudaArray(owned, owned.ids_pointer, owned.points, "<i4")
+        self.halo = int(owned.halo)
+
+    def __repr__(self):
+        kind = "half" if self.half else "full"
+        return (f"<horizon.DevicePart: {len(self)} points + {self.halo} halo, {self.total} entries ({kind}), "
+                f"GPU {self.device}>")
+
+
 def _search_on_gpu(points, horizon, metric, half, sort_rows, cells_per_horizon):
     interface = points.__cuda_array_interface__
     shape, typestr = tuple(interface["shape"]), interface["typestr"]
@@ -319,7 +337,7 @@ def _cell_and_pbc(cell, pbc, dims):
 def search(points, horizon=None, *, backend="auto", metric="l2", half=False, sort_rows=True, threads=0, device=0,
            devices=None, cells_per_horizon=1, box=None, references=None, radii=None, radius_rule="gather",
            gpu_max_memory=0, cell=None, pbc=None, self_interaction=False, shifts=False, distances=False,
-           vectors=False):
+           vectors=False, keep_on_device=False):
     """The neighbour list of `points` ((N, 2) or (N, 3) array-like, float64 or float32, any
     order): row i holds every j != i with distance(i, j) < horizon.
 
@@ -350,6 +368,10 @@ def search(points, horizon=None, *, backend="auto", metric="l2", half=False, sor
     A CUDA array (__cuda_array_interface__: CuPy, PyTorch; float64, C-contiguous) is searched
     where it lies, on its GPU and stream, and gives a DeviceNeighborList (backend, threads and
     device do not apply).
+
+    keep_on_device (backend="cuda"): the points cut into one part per entry of devices (or device
+    alone), each part's rows left on its GPU: a list of DevicePart, one per GPU, whose rows
+    together are the list.
     """
     if (horizon is None) == (radii is None):
         raise ValueError("give either horizon or radii (one radius per point)")
@@ -361,6 +383,17 @@ def search(points, horizon=None, *, backend="auto", metric="l2", half=False, sor
                              "yet: pass host arrays (backend='cuda' still runs on the GPU)")
         return _search_on_gpu(points, horizon, metric, half, sort_rows, cells_per_horizon)
     array = _host_points(points)
+    if keep_on_device:
+        if backend != "cuda":
+            raise ValueError(f"keep_on_device=True needs backend='cuda', not {backend!r}")
+        if radii is not None or box is not None or references is not None or cell is not None or shifts or \
+                distances or vectors:
+            raise ValueError("keep_on_device=True: radii=, box=, references=, cell= and the per-entry outputs "
+                             "are not supported")
+        parts = _horizon.search_device_parts(array, float(horizon), metric, bool(half), bool(sort_rows), int(device),
+                                             [int(d) for d in (devices or [])], int(cells_per_horizon),
+                                             _byte_count(gpu_max_memory, "gpu_max_memory"))
+        return [DevicePart(part, half) for part in parts]
     reference_array = None if references is None else _host_points(references, "references")
     if reference_array is not None and reference_array.shape[1] != array.shape[1]:
         raise ValueError(f"references have {reference_array.shape[1]} coordinates, points {array.shape[1]}")

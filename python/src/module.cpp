@@ -48,6 +48,12 @@ struct OwnedDeviceList {
   bool half;
 };
 
+/// One GPU's part of a search left on the GPUs (search_device_parts), owned by Python.
+struct OwnedDevicePart {
+  horizon::DevicePart part;
+  bool half;
+};
+
 template <typename T>
 py::array view(const T* data, std::size_t count, py::handle owner) {
   return py::array(py::dtype::of<T>(), {count}, {sizeof(T)}, data, owner);
@@ -185,6 +191,23 @@ OwnedDeviceList search_device(std::uintptr_t pointer, std::size_t count, int dim
   return OwnedDeviceList{std::move(list), stream, options.device, half};
 }
 
+/// `points` cut into one part per entry of `devices`, each part's rows left on its GPU.
+std::vector<OwnedDevicePart> search_device_parts(py::array points, double horizon, const std::string& metric,
+                                                 bool half, bool sort_rows, int device,
+                                                 const std::vector<int>& devices, int cells_per_horizon,
+                                                 std::size_t gpu_max_memory) {
+  const horizon::PointView view = point_view(points);
+  horizon::SearchOptions options = options_of(horizon, metric, half, sort_rows, cells_per_horizon);
+  options.backend = horizon::Backend::cuda;
+  options.device = device;
+  options.devices = devices;
+  options.gpu_max_memory = gpu_max_memory;
+  py::gil_scoped_release unlocked;
+  std::vector<OwnedDevicePart> parts;
+  for (horizon::DevicePart& part : horizon::search_device_parts(view, options)) parts.push_back({std::move(part), half});
+  return parts;
+}
+
 /// A property of OwnedList: one of its list's arrays as a NumPy view that keeps the list alive.
 template <typename T>
 auto list_array(const horizon::Buffer<T>& (horizon::NeighborList::*array)() const) {
@@ -261,6 +284,27 @@ PYBIND11_MODULE(_horizon, m) {
         return OwnedList{l.list.to_host(l.half)};
       });
 
+  py::class_<OwnedDevicePart>(m, "OwnedDevicePart")
+      .def_property_readonly("offsets_pointer", [](const OwnedDevicePart& p) { return reinterpret_cast<std::uintptr_t>(p.part.rows.offsets()); })
+      .def_property_readonly("indices_pointer", [](const OwnedDevicePart& p) { return reinterpret_cast<std::uintptr_t>(p.part.rows.indices()); })
+      .def_property_readonly("ids_pointer", [](const OwnedDevicePart& p) { return reinterpret_cast<std::uintptr_t>(p.part.device_ids.get()); })
+      .def_property_readonly("ids", [](py::object self) {
+        const auto& ids = self.cast<const OwnedDevicePart&>().part.ids;
+        return view(ids.data(), ids.size(), self);
+      })
+      .def_property_readonly("points", [](const OwnedDevicePart& p) { return p.part.rows.size(); })
+      .def_property_readonly("total", [](const OwnedDevicePart& p) { return p.part.rows.total(); })
+      .def_property_readonly("halo", [](const OwnedDevicePart& p) { return p.part.halo; })
+      .def_property_readonly("stream", [](const OwnedDevicePart& p) { return reinterpret_cast<std::uintptr_t>(p.part.rows.stream()); })
+      .def_property_readonly("device", [](const OwnedDevicePart& p) { return p.part.device; })
+      .def("to_host", [](const OwnedDevicePart& p) {
+        py::gil_scoped_release unlocked;
+        return OwnedList{p.part.rows.to_host(p.half)};
+      });
+
+  m.def("search_device_parts", &search_device_parts, py::arg("points"), py::arg("horizon"), py::arg("metric"),
+        py::arg("half"), py::arg("sort_rows"), py::arg("device"), py::arg("devices"), py::arg("cells_per_horizon"),
+        py::arg("gpu_max_memory"));
   m.def("search_device", &search_device, py::arg("pointer"), py::arg("count"), py::arg("dims"), py::arg("stream"),
         py::arg("horizon"), py::arg("metric"), py::arg("half"), py::arg("sort_rows"), py::arg("cells_per_horizon"));
   m.def("search", &search, py::arg("points"), py::arg("horizon"), py::arg("metric"), py::arg("half"),

@@ -81,3 +81,19 @@ def test_several_devices_from_python():
     reference = horizon.search(points, 0.15, backend="serial")
     np.testing.assert_array_equal(nl.offsets, reference.offsets)
     np.testing.assert_array_equal(nl.indices, reference.indices)
+
+
+@pytest.mark.parametrize("half", [False, True])
+def test_parts_kept_on_the_gpus(half):
+    points = horizon.clustered_cloud(100000, clusters=8, sigma=0.7, seed=6)
+    reference = horizon.search(points, 0.15, half=half, backend="serial")
+    parts = horizon.search(points, 0.15, half=half, backend="cuda", devices=[0, 0, 0], keep_on_device=True)
+    assert len(parts) == 3 and all(isinstance(p, horizon.DevicePart) for p in parts)
+    assert sorted(np.concatenate([p.ids for p in parts]).tolist()) == list(range(len(points)))
+    for part in parts:
+        rows = part.to_host()
+        for r in range(0, len(part), 997):
+            np.testing.assert_array_equal(rows.row(r), reference.row(part.ids[r]))
+        if libraries:
+            np.testing.assert_array_equal(to_numpy(libraries[0], part.device_ids), part.ids)
+            np.testing.assert_array_equal(to_numpy(libraries[0], part.indices), rows.indices)

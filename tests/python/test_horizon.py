@@ -113,6 +113,13 @@ def test_clear_errors():
         horizon.search(horizon.random_cloud(10), 0.5, metric="cosine")
     with pytest.raises(ValueError, match="cuda backend"):
         horizon.search(horizon.random_cloud(10), 0.5, backend="serial", devices=[0, 1])
+    with pytest.raises(ValueError, match="backend='cuda'"):
+        horizon.search(horizon.random_cloud(10), 0.5, keep_on_device=True)
+    with pytest.raises(ValueError, match="not supported"):
+        horizon.search(horizon.random_cloud(10), 0.5, backend="cuda", keep_on_device=True, box=[1, 1, 1])
+    if not horizon.backend_available("cuda"):
+        with pytest.raises(ValueError, match="CUDA"):
+            horizon.search(horizon.random_cloud(10), 0.5, backend="cuda", keep_on_device=True)
 
 
 def test_gpu_max_memory_gives_the_same_list():
