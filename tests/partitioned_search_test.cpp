@@ -18,6 +18,8 @@
 #include "datasets.hpp"
 #include "same_families.hpp"
 #include "horizon/cuda.hpp"
+#include "horizon/decomposition.hpp"
+#include "horizon/grid.hpp"
 #include "horizon/parts.hpp"
 #include "horizon/search.hpp"
 
@@ -97,6 +99,27 @@ TEST(PartitionedSearch, PartsOnTheCpuGiveTheSerialList) {
             EXPECT_TRUE(both.empty());
           }
         }
+}
+
+// The walk down the cuts finds the owner and exactly the boxes every box's own test finds.
+TEST(PartitionedSearch, OwnerAndNearRanksMatchEveryBoxTested) {
+  for (int dims : {2, 3})
+    for (int ranks : {1, 2, 3, 7, 16, 64}) {
+      const PointSet points = clustered_cloud(20000, 4, 0.8, dims, static_cast<std::uint64_t>(ranks));
+      const Bounds box = bounds_of(points.view(), 1);
+      for (const Decomposition& d : {Decomposition::rcb(box, points.view(), ranks), Decomposition::brick(box, dims, ranks)})
+        for (double reach : {0.05, 0.4, 3.0})
+          for (std::size_t i = 0; i < points.size(); ++i) {
+            double x[3] = {0, 0, 0};
+            for (int a = 0; a < dims; ++a) x[a] = points.view()(i, a);
+            std::uint64_t near = 0, expected = 0;
+            const int owner = d.owner_and_near(x, reach, near);
+            ASSERT_EQ(owner, d.owner(x));
+            for (int r = 0; r < ranks; ++r)
+              if (r != owner && d.box(r).near(x, dims, reach)) expected |= std::uint64_t{1} << r;
+            ASSERT_EQ(near, expected) << "point " << i << " ranks " << ranks << " reach " << reach;
+          }
+    }
 }
 
 TEST(PartitionedSearch, PartsRefuseWhatTheyCannotCut) {

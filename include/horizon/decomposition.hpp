@@ -4,6 +4,7 @@
 /// partitions by input order instead; see distributed.hpp). Pure geometry, no MPI: the
 /// distributed search and the communication model share it.
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "horizon/grid.hpp"
@@ -42,6 +43,10 @@ public:
   const Box& box(int rank) const { return boxes_[static_cast<std::size_t>(rank)]; }
   /// The rank owning point x: exactly one for every x inside the global box.
   int owner(const double* x) const;
+  /// The rank owning x, and in `near` (bit r) every other rank whose box x is near (Box::near)
+  /// within `reach`: one walk down the cuts, into both sides only within reach of a cut. At
+  /// most 64 ranks.
+  int owner_and_near(const double* x, double reach, std::uint64_t& near) const;
   /// Ranks whose box, widened by `reach`, holds some of rank's box: its halo partners.
   std::vector<int> partners(int rank, double reach) const;
 

@@ -153,6 +153,35 @@ int Decomposition::owner(const double* x) const {
   }
 }
 
+int Decomposition::owner_and_near(const double* x, double reach, std::uint64_t& near) const {
+  near = 0;
+  if (tree_.empty()) return 0;
+  const int owner = this->owner(x);
+  // Farther than reach from every face of its own box, x is near no other box (their interiors
+  // would overlap): most points, with no walk.
+  const Box& own = box(owner);
+  bool inside = true;
+  for (int a = 0; a < dims_; ++a) inside &= x[a] > own.lo[a] + reach && x[a] < own.hi[a] - reach;
+  if (inside) return owner;
+  // A rank below a cut has hi <= at on its axis, one above lo >= at: x near its box needs
+  // x < at + reach, or x > at - reach. Ranks past every such test get Box::near itself.
+  int stack[64];
+  int depth = 0;
+  stack[depth++] = 0;
+  while (depth > 0) {
+    const Cut& cut = tree_[static_cast<std::size_t>(stack[--depth])];
+    const double at = x[cut.axis];
+    for (const int next : {at < cut.at + reach ? cut.below : 0, at > cut.at - reach ? cut.above : 0}) {
+      if (next > 0) {
+        stack[depth++] = next;
+      } else if (next < 0 && -1 - next != owner && box(-1 - next).near(x, dims_, reach)) {
+        near |= std::uint64_t{1} << (-1 - next);
+      }
+    }
+  }
+  return owner;
+}
+
 std::vector<int> Decomposition::partners(int rank, double reach) const {
   std::vector<int> out;
   const Box& mine = box(rank);

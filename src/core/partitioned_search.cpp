@@ -3,11 +3,14 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <chrono>
 #include <cstring>
 #include <exception>
 #include <span>
 #include <thread>
+#include <utility>
 
 #include "cell_search.hpp"
 #include "device_part.hpp"
@@ -62,88 +65,100 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// The ascending ids i < n with keep(i), found on all cores (each thread counts, then writes,
-/// a contiguous range of ids).
-template <class Keep>
-ScratchBuffer<point_id> ids_where(std::size_t n, Keep keep) {
-  const int pieces = omp_get_max_threads();
-  std::vector<std::size_t> start(static_cast<std::size_t>(pieces) + 1, 0);
-  auto range = [&](int t) { return std::pair{n * t / pieces, n * (t + 1) / pieces}; };
-#pragma omp parallel for schedule(static)
-  for (int t = 0; t < pieces; ++t) {
-    const auto [begin, end] = range(t);
-    std::size_t count = 0;
-    for (std::size_t i = begin; i < end; ++i) count += keep(i);
-    start[t + 1] = count;
+/// How the points are cut: the parts' boxes, and the reach of their halos.
+struct Cut {
+  Decomposition boxes;
+  double reach;
+  /// Point i's part, and its halo parts (bit p) in `halo`.
+  int parts_of(PointView points, std::size_t i, std::uint64_t& halo) const {
+    double x[3] = {0, 0, 0};
+    for (int a = 0; a < points.dims(); ++a) x[a] = points(i, a);
+    return boxes.owner_and_near(x, reach, halo);
   }
-  for (int t = 0; t < pieces; ++t) start[t + 1] += start[t];
-  ScratchBuffer<point_id> ids(start[pieces]);
-#pragma omp parallel for schedule(static)
-  for (int t = 0; t < pieces; ++t) {
-    const auto [begin, end] = range(t);
-    point_id* out = ids.data() + start[t];
-    for (std::size_t i = begin; i < end; ++i)
-      if (keep(i)) *out++ = static_cast<point_id>(i);
-  }
-  return ids;
-}
-
-/// Every point's part and the parts whose halo it lies in (bit p of halo).
-struct Membership {
-  ScratchBuffer<std::uint8_t> owner;
-  ScratchBuffer<std::uint64_t> halo;
 };
 
-Membership membership(PointView points, const Decomposition& d, int parts, double reach) {
-  const auto n = static_cast<std::int64_t>(points.size());
-  const int dims = points.dims();
-  Membership m{ScratchBuffer<std::uint8_t>(points.size()), ScratchBuffer<std::uint64_t>(points.size())};
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) {
-    double x[3] = {0, 0, 0};
-    for (int a = 0; a < dims; ++a) x[a] = points(static_cast<std::size_t>(i), a);
-    const int owner = d.owner(x);
-    std::uint64_t halo = 0;
-    for (int p = 0; p < parts; ++p)
-      if (p != owner && d.box(p).near(x, dims, reach)) halo |= std::uint64_t{1} << p;
-    m.owner[i] = static_cast<std::uint8_t>(owner);
-    m.halo[i] = halo;
-  }
-  return m;
-}
-
 /// Cuts `points` as search_parts does: the parts' boxes by RCB on a strided sample of at most
-/// 2^20 points (equal counts to within a fraction of a percent, without sorting all the
-/// points), then each point's owner and halo parts.
-Membership cut_points(PointView points, int count, double horizon) {
+/// 2^17 points (equal counts to within a fraction of a percent without sorting all the points).
+Cut cut_points(PointView points, int count, double horizon) {
   if (count < 1 || count > 64)  // the halo bits
     throw Error(std::to_string(count) + " parts: from 1 to 64 are supported");
-  const std::size_t stride = std::max<std::size_t>(1, points.size() >> 20);
+  const std::size_t stride = std::max<std::size_t>(1, points.size() >> 16);
   PointSet sample{points.dims(), {}};
+  sample.xyz.reserve((points.size() / stride + 1) * static_cast<std::size_t>(points.dims()));
   for (std::size_t i = 0; i < points.size(); i += stride)
     for (int a = 0; a < points.dims(); ++a) sample.xyz.push_back(points(i, a));
   const Bounds box = bounds_of(points, omp_get_max_threads());
-  const Decomposition d = Decomposition::rcb(box, sample.view(), count);
-  return membership(points, d, count, halo_reach(box, points.dims(), horizon));
+  return Cut{Decomposition::rcb(box, sample.view(), count), halo_reach(box, points.dims(), horizon)};
 }
 
-/// Part p's owned points and halo.
-void owned_and_halo(const Membership& m, std::size_t n, int p, Part& part) {
-  const std::uint64_t bit = std::uint64_t{1} << p;
-  part.owned = ids_where(n, [&](std::size_t i) { return m.owner[i] == p; });
-  part.halo = ids_where(n, [&](std::size_t i) { return (m.halo[i] & bit) != 0; });
-  part.stats.owned = part.owned.size();
-  part.stats.halo = part.halo.size();
-}
-
-/// Part p's local points for its GPU: its own and its halo in one ascending order.
-void local_points(const Membership& m, std::size_t n, int p, Part& part) {
-  const std::uint64_t bit = std::uint64_t{1} << p;
-  part.global = ids_where(n, [&](std::size_t i) { return m.owner[i] == p || (m.halo[i] & bit); });
-  part.owned_rows = ids_where(part.global.size(), [&](std::size_t r) { return m.owner[part.global[r]] == p; });
-  part.owned = ids_where(n, [&](std::size_t i) { return m.owner[i] == p; });
-  part.stats.owned = part.owned.size();
-  part.stats.halo = part.global.size() - part.owned.size();
+/// Every part's lists, in two passes over the points on all cores (each thread counts, then
+/// writes, a contiguous range of ids for every part at once, so each list ascends): its owned
+/// points and its halo; with `local` (GPU parts), also its local points (its own and its halo
+/// in one ascending order) and the local rows of its owned points. The first pass keeps each
+/// point's part in a byte, marked when the point is in some halo: the second walks the cuts
+/// again for those points alone.
+void fill_parts(PointView points, const Cut& cut, std::vector<Part>& parts, bool local) {
+  const std::size_t n = points.size();
+  const int count = static_cast<int>(parts.size());
+  const int pieces = omp_get_max_threads();
+  // Per piece and part: owned, halo and local points, counted then turned into write cursors.
+  std::vector<std::array<std::size_t, 3>> at(static_cast<std::size_t>(pieces * count), {0, 0, 0});
+  auto range = [&](int t) { return std::pair{n * t / pieces, n * (t + 1) / pieces}; };
+  constexpr std::uint8_t in_halos = 0x80;
+  ScratchBuffer<std::uint8_t> owner(n);
+  auto each_part_of = [&](std::size_t i, auto&& visit) {  // visit(part, owned?)
+    std::uint64_t halo = 0;
+    visit(cut.parts_of(points, i, halo), true);
+    for (; halo; halo &= halo - 1) visit(std::countr_zero(halo), false);
+  };
+#pragma omp parallel for schedule(static)
+  for (int t = 0; t < pieces; ++t) {
+    const auto [begin, end] = range(t);
+    std::array<std::array<std::size_t, 3>, 64> counts{};  // on the thread's stack: no false sharing
+    for (std::size_t i = begin; i < end; ++i)
+      each_part_of(i, [&](int p, bool owned) {
+        ++counts[p][owned ? 0 : 1];
+        ++counts[p][2];
+        owner[i] = owned ? static_cast<std::uint8_t>(p) : owner[i] | in_halos;
+      });
+    std::copy_n(counts.begin(), count, at.begin() + t * count);
+  }
+  // Exclusive scans over the pieces: where each piece writes in each part's lists.
+  for (int p = 0; p < count; ++p) {
+    std::array<std::size_t, 3> total{0, 0, 0};
+    for (int t = 0; t < pieces; ++t) {
+      auto& cursor = at[static_cast<std::size_t>(t * count + p)];
+      for (int k = 0; k < 3; ++k) total[k] += std::exchange(cursor[k], total[k]);
+    }
+    Part& part = parts[static_cast<std::size_t>(p)];
+    part.owned.resize(total[0]);
+    part.halo.resize(local ? 0 : total[1]);
+    part.global.resize(local ? total[2] : 0);
+    part.owned_rows.resize(local ? total[0] : 0);
+    part.stats.owned = total[0];
+    part.stats.halo = total[1];
+  }
+#pragma omp parallel for schedule(static)
+  for (int t = 0; t < pieces; ++t) {
+    const auto [begin, end] = range(t);
+    std::array<std::array<std::size_t, 3>, 64> cursors{};
+    std::copy_n(at.begin() + t * count, count, cursors.begin());
+    for (std::size_t i = begin; i < end; ++i) {
+      auto write = [&](int p, bool owned) {
+        Part& part = parts[static_cast<std::size_t>(p)];
+        auto& cursor = cursors[p];
+        const auto id = static_cast<point_id>(i);
+        if (local) {
+          if (owned) part.owned_rows[cursor[0]] = static_cast<point_id>(cursor[2]);
+          part.global[cursor[2]++] = id;
+        }
+        if (owned) part.owned[cursor[0]++] = id;
+        else if (!local) part.halo[cursor[1]++] = id;
+      };
+      if (owner[i] & in_halos) each_part_of(i, write);
+      else write(owner[i], true);
+    }
+  }
 }
 
 /// Runs work(p) for every part on a thread of its own; the first failure is rethrown once all
@@ -271,7 +286,7 @@ NeighborList search_parts(PointView points, const SearchOptions& options,
                           const std::vector<SearchOptions>& part_options, SearchStats& stats) {
   auto clock = std::chrono::steady_clock::now();
   const int count = static_cast<int>(part_options.size());
-  const Membership m = cut_points(points, count, options.horizon);
+  const Cut cut = cut_points(points, count, options.horizon);
   const std::size_t n = points.size();
   std::vector<Part> parts(static_cast<std::size_t>(count));
   // GPU parts keep their rows on their GPUs until each row is copied to its place; a part that
@@ -279,9 +294,7 @@ NeighborList search_parts(PointView points, const SearchOptions& options,
   bool on_devices = options.queries == 0 &&
                     std::all_of(part_options.begin(), part_options.end(),
                                 [](const SearchOptions& o) { return o.backend == Backend::cuda; });
-  for (int p = 0; p < count; ++p)
-    if (on_devices) local_points(m, n, p, parts[p]);
-    else owned_and_halo(m, n, p, parts[p]);
+  fill_parts(points, cut, parts, on_devices);
   stats.partition_seconds = seconds_since(clock);
 
   clock = std::chrono::steady_clock::now();
@@ -293,10 +306,8 @@ NeighborList search_parts(PointView points, const SearchOptions& options,
       });
     } catch (const DeviceOutOfMemory&) {
       on_devices = false;
-      for (int p = 0; p < count; ++p) {
-        parts[p] = Part();
-        owned_and_halo(m, n, p, parts[p]);
-      }
+      for (Part& part : parts) part = Part();
+      fill_parts(points, cut, parts, false);
     }
   }
   if (!on_devices) on_each_part(count, [&](int p) { search_part(points, parts[p], part_options[p]); });
@@ -352,24 +363,25 @@ namespace horizon {
 
 std::vector<PointPart> cut_into_parts(PointView points, int parts, const SearchOptions& options) {
   detail::check_parts_input(points, options);
-  const detail::Membership m = detail::cut_points(points, parts, options.horizon);
-  std::vector<PointPart> cut(static_cast<std::size_t>(parts));
+  const detail::Cut cut = detail::cut_points(points, parts, options.horizon);
+  std::vector<detail::Part> lists(static_cast<std::size_t>(parts));
+  detail::fill_parts(points, cut, lists, false);
+  std::vector<PointPart> result(static_cast<std::size_t>(parts));
   for (int p = 0; p < parts; ++p) {
-    detail::Part part;
-    detail::owned_and_halo(m, points.size(), p, part);
-    cut[p].owned.assign(part.owned.begin(), part.owned.end());
-    cut[p].halo.assign(part.halo.begin(), part.halo.end());
+    result[p].owned.assign(lists[p].owned.begin(), lists[p].owned.end());
+    result[p].halo.assign(lists[p].halo.begin(), lists[p].halo.end());
   }
-  return cut;
+  return result;
 }
 
 std::vector<OwnedPart> search_in_parts(PointView points, int parts, const SearchOptions& options) {
   detail::check_parts_input(points, options);
-  const detail::Membership m = detail::cut_points(points, parts, options.horizon);
+  const detail::Cut cut = detail::cut_points(points, parts, options.horizon);
+  std::vector<detail::Part> lists(static_cast<std::size_t>(parts));
+  detail::fill_parts(points, cut, lists, false);
   std::vector<OwnedPart> result(static_cast<std::size_t>(parts));
   for (int p = 0; p < parts; ++p) {
-    detail::Part part;
-    detail::owned_and_halo(m, points.size(), p, part);
+    detail::Part& part = lists[p];
     detail::search_part(points, part, options);
     result[p].rows = detail::rows_in_global_ids(part.list, part.global, part.owned.size(), options.half, options.sort_rows);
     result[p].ids.assign(part.owned.begin(), part.owned.end());
@@ -383,9 +395,9 @@ std::vector<DevicePart> search_device_parts(PointView points, const SearchOption
   const std::vector<int> devices = options.devices.empty() ? std::vector<int>{options.device} : options.devices;
   const int count = static_cast<int>(devices.size());
   auto clock = std::chrono::steady_clock::now();
-  const detail::Membership m = detail::cut_points(points, count, options.horizon);
+  const detail::Cut cut = detail::cut_points(points, count, options.horizon);
   std::vector<detail::Part> parts(static_cast<std::size_t>(count));
-  for (int p = 0; p < count; ++p) detail::local_points(m, points.size(), p, parts[p]);
+  detail::fill_parts(points, cut, parts, true);
   const double partition_seconds = detail::seconds_since(clock);
   clock = std::chrono::steady_clock::now();
   detail::on_each_part(count, [&](int p) {
