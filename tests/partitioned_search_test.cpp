@@ -14,6 +14,7 @@
 #endif
 
 #include "core/device_part.hpp"
+#include "core/part_lists.hpp"
 #include "core/partitioned_search.hpp"
 #include "datasets.hpp"
 #include "same_families.hpp"
@@ -120,6 +121,33 @@ TEST(PartitionedSearch, OwnerAndNearRanksMatchEveryBoxTested) {
             ASSERT_EQ(near, expected) << "point " << i << " ranks " << ranks << " reach " << reach;
           }
     }
+}
+
+// A GPU part's lists (its own points and its halo in one ascending order, and where its own
+// ones lie in it) hold the same points as the host path's.
+TEST(PartitionedSearch, GpuPartListsHoldTheHostPathsPoints) {
+  for (int dims : {2, 3})
+    for (const Dataset& data : datasets(dims))
+      for (int count : {1, 2, 3, 5, 8}) {
+        const detail::PartCut cut(data.points.view(), count, data.horizon);
+        const std::vector<detail::PartLists> host = cut.lists(data.points.view(), false);
+        const std::vector<detail::PartLists> gpu = cut.lists(data.points.view(), true);
+        std::vector<int> owners(data.points.size(), 0);
+        for (int p = 0; p < count; ++p) {
+          ASSERT_EQ(gpu[p].owned, host[p].owned) << data.name << " part " << p;
+          ASSERT_EQ(gpu[p].halo_count, host[p].halo.size());
+          std::vector<point_id> both;
+          std::merge(host[p].owned.begin(), host[p].owned.end(), host[p].halo.begin(), host[p].halo.end(),
+                     std::back_inserter(both));
+          ASSERT_TRUE(std::equal(both.begin(), both.end(), gpu[p].global.begin(), gpu[p].global.end()));
+          ASSERT_EQ(gpu[p].owned_rows.size(), gpu[p].owned.size());
+          for (std::size_t k = 0; k < gpu[p].owned.size(); ++k) {
+            ASSERT_EQ(gpu[p].global[gpu[p].owned_rows[k]], gpu[p].owned[k]);
+            ++owners[static_cast<std::size_t>(gpu[p].owned[k])];
+          }
+        }
+        for (int owned : owners) ASSERT_EQ(owned, 1);
+      }
 }
 
 TEST(PartitionedSearch, PartsRefuseWhatTheyCannotCut) {

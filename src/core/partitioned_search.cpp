@@ -3,8 +3,6 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <array>
-#include <bit>
 #include <chrono>
 #include <cstring>
 #include <exception>
@@ -15,13 +13,13 @@
 #include "cell_search.hpp"
 #include "device_part.hpp"
 #include "horizon/cuda.hpp"
-#include "horizon/decomposition.hpp"
 #include "horizon/error.hpp"
 #include "horizon/grid.hpp"
 #include "horizon/parts.hpp"
 #include "memory_check.hpp"
 #include "parallel_copy.hpp"
 #include "parallel_scan.hpp"
+#include "part_lists.hpp"
 #include "reference_search.hpp"
 
 namespace horizon::detail {
@@ -31,8 +29,7 @@ namespace {
 /// list (owned points first, then the halo) and `global`, the global id of each local point. A
 /// GPU part's local points are its own and its halo in one ascending order (`global`), the
 /// owned ones at `owned_rows`; its rows stay on its GPU, their offsets also on the host.
-struct Part {
-  ScratchBuffer<point_id> owned, halo, global, owned_rows;
+struct Part : PartLists {
   NeighborList list;
   PartStats stats;
   DevicePart on_device;
@@ -65,99 +62,13 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// How the points are cut: the parts' boxes, and the reach of their halos.
-struct Cut {
-  Decomposition boxes;
-  double reach;
-  /// Point i's part, and its halo parts (bit p) in `halo`.
-  int parts_of(PointView points, std::size_t i, std::uint64_t& halo) const {
-    double x[3] = {0, 0, 0};
-    for (int a = 0; a < points.dims(); ++a) x[a] = points(i, a);
-    return boxes.owner_and_near(x, reach, halo);
-  }
-};
-
-/// Cuts `points` as search_parts does: the parts' boxes by RCB on a strided sample of at most
-/// 2^17 points (equal counts to within a fraction of a percent without sorting all the points).
-Cut cut_points(PointView points, int count, double horizon) {
-  if (count < 1 || count > 64)  // the halo bits
-    throw Error(std::to_string(count) + " parts: from 1 to 64 are supported");
-  const std::size_t stride = std::max<std::size_t>(1, points.size() >> 16);
-  PointSet sample{points.dims(), {}};
-  sample.xyz.reserve((points.size() / stride + 1) * static_cast<std::size_t>(points.dims()));
-  for (std::size_t i = 0; i < points.size(); i += stride)
-    for (int a = 0; a < points.dims(); ++a) sample.xyz.push_back(points(i, a));
-  const Bounds box = bounds_of(points, omp_get_max_threads());
-  return Cut{Decomposition::rcb(box, sample.view(), count), halo_reach(box, points.dims(), horizon)};
-}
-
-/// Every part's lists, in two passes over the points on all cores (each thread counts, then
-/// writes, a contiguous range of ids for every part at once, so each list ascends): its owned
-/// points and its halo; with `local` (GPU parts), also its local points (its own and its halo
-/// in one ascending order) and the local rows of its owned points. The first pass keeps each
-/// point's part in a byte, marked when the point is in some halo: the second walks the cuts
-/// again for those points alone.
-void fill_parts(PointView points, const Cut& cut, std::vector<Part>& parts, bool local) {
-  const std::size_t n = points.size();
-  const int count = static_cast<int>(parts.size());
-  const int pieces = omp_get_max_threads();
-  // Per piece and part: owned, halo and local points, counted then turned into write cursors.
-  std::vector<std::array<std::size_t, 3>> at(static_cast<std::size_t>(pieces * count), {0, 0, 0});
-  auto range = [&](int t) { return std::pair{n * t / pieces, n * (t + 1) / pieces}; };
-  constexpr std::uint8_t in_halos = 0x80;
-  ScratchBuffer<std::uint8_t> owner(n);
-  auto each_part_of = [&](std::size_t i, auto&& visit) {  // visit(part, owned?)
-    std::uint64_t halo = 0;
-    visit(cut.parts_of(points, i, halo), true);
-    for (; halo; halo &= halo - 1) visit(std::countr_zero(halo), false);
-  };
-#pragma omp parallel for schedule(static)
-  for (int t = 0; t < pieces; ++t) {
-    const auto [begin, end] = range(t);
-    std::array<std::array<std::size_t, 3>, 64> counts{};  // on the thread's stack: no false sharing
-    for (std::size_t i = begin; i < end; ++i)
-      each_part_of(i, [&](int p, bool owned) {
-        ++counts[p][owned ? 0 : 1];
-        ++counts[p][2];
-        owner[i] = owned ? static_cast<std::uint8_t>(p) : owner[i] | in_halos;
-      });
-    std::copy_n(counts.begin(), count, at.begin() + t * count);
-  }
-  // Exclusive scans over the pieces: where each piece writes in each part's lists.
-  for (int p = 0; p < count; ++p) {
-    std::array<std::size_t, 3> total{0, 0, 0};
-    for (int t = 0; t < pieces; ++t) {
-      auto& cursor = at[static_cast<std::size_t>(t * count + p)];
-      for (int k = 0; k < 3; ++k) total[k] += std::exchange(cursor[k], total[k]);
-    }
-    Part& part = parts[static_cast<std::size_t>(p)];
-    part.owned.resize(total[0]);
-    part.halo.resize(local ? 0 : total[1]);
-    part.global.resize(local ? total[2] : 0);
-    part.owned_rows.resize(local ? total[0] : 0);
-    part.stats.owned = total[0];
-    part.stats.halo = total[1];
-  }
-#pragma omp parallel for schedule(static)
-  for (int t = 0; t < pieces; ++t) {
-    const auto [begin, end] = range(t);
-    std::array<std::array<std::size_t, 3>, 64> cursors{};
-    std::copy_n(at.begin() + t * count, count, cursors.begin());
-    for (std::size_t i = begin; i < end; ++i) {
-      auto write = [&](int p, bool owned) {
-        Part& part = parts[static_cast<std::size_t>(p)];
-        auto& cursor = cursors[p];
-        const auto id = static_cast<point_id>(i);
-        if (local) {
-          if (owned) part.owned_rows[cursor[0]] = static_cast<point_id>(cursor[2]);
-          part.global[cursor[2]++] = id;
-        }
-        if (owned) part.owned[cursor[0]++] = id;
-        else if (!local) part.halo[cursor[1]++] = id;
-      };
-      if (owner[i] & in_halos) each_part_of(i, write);
-      else write(owner[i], true);
-    }
+/// Every part's lists (part_lists.hpp) moved into `parts`, with their point counts.
+void take_lists(std::vector<PartLists>&& lists, std::vector<Part>& parts) {
+  for (std::size_t p = 0; p < lists.size(); ++p) {
+    Part& part = parts[p];
+    part.stats.owned = lists[p].owned.size();
+    part.stats.halo = lists[p].halo_count;
+    static_cast<PartLists&>(part) = std::move(lists[p]);
   }
 }
 
@@ -286,7 +197,7 @@ NeighborList search_parts(PointView points, const SearchOptions& options,
                           const std::vector<SearchOptions>& part_options, SearchStats& stats) {
   auto clock = std::chrono::steady_clock::now();
   const int count = static_cast<int>(part_options.size());
-  const Cut cut = cut_points(points, count, options.horizon);
+  const PartCut cut(points, count, options.horizon);
   const std::size_t n = points.size();
   std::vector<Part> parts(static_cast<std::size_t>(count));
   // GPU parts keep their rows on their GPUs until each row is copied to its place; a part that
@@ -294,7 +205,7 @@ NeighborList search_parts(PointView points, const SearchOptions& options,
   bool on_devices = options.queries == 0 &&
                     std::all_of(part_options.begin(), part_options.end(),
                                 [](const SearchOptions& o) { return o.backend == Backend::cuda; });
-  fill_parts(points, cut, parts, on_devices);
+  take_lists(cut.lists(points, on_devices), parts);
   stats.partition_seconds = seconds_since(clock);
 
   clock = std::chrono::steady_clock::now();
@@ -307,7 +218,7 @@ NeighborList search_parts(PointView points, const SearchOptions& options,
     } catch (const DeviceOutOfMemory&) {
       on_devices = false;
       for (Part& part : parts) part = Part();
-      fill_parts(points, cut, parts, false);
+      take_lists(cut.lists(points, false), parts);
     }
   }
   if (!on_devices) on_each_part(count, [&](int p) { search_part(points, parts[p], part_options[p]); });
@@ -363,9 +274,7 @@ namespace horizon {
 
 std::vector<PointPart> cut_into_parts(PointView points, int parts, const SearchOptions& options) {
   detail::check_parts_input(points, options);
-  const detail::Cut cut = detail::cut_points(points, parts, options.horizon);
-  std::vector<detail::Part> lists(static_cast<std::size_t>(parts));
-  detail::fill_parts(points, cut, lists, false);
+  std::vector<detail::PartLists> lists = detail::PartCut(points, parts, options.horizon).lists(points, false);
   std::vector<PointPart> result(static_cast<std::size_t>(parts));
   for (int p = 0; p < parts; ++p) {
     result[p].owned.assign(lists[p].owned.begin(), lists[p].owned.end());
@@ -376,9 +285,8 @@ std::vector<PointPart> cut_into_parts(PointView points, int parts, const SearchO
 
 std::vector<OwnedPart> search_in_parts(PointView points, int parts, const SearchOptions& options) {
   detail::check_parts_input(points, options);
-  const detail::Cut cut = detail::cut_points(points, parts, options.horizon);
   std::vector<detail::Part> lists(static_cast<std::size_t>(parts));
-  detail::fill_parts(points, cut, lists, false);
+  detail::take_lists(detail::PartCut(points, parts, options.horizon).lists(points, false), lists);
   std::vector<OwnedPart> result(static_cast<std::size_t>(parts));
   for (int p = 0; p < parts; ++p) {
     detail::Part& part = lists[p];
@@ -395,9 +303,8 @@ std::vector<DevicePart> search_device_parts(PointView points, const SearchOption
   const std::vector<int> devices = options.devices.empty() ? std::vector<int>{options.device} : options.devices;
   const int count = static_cast<int>(devices.size());
   auto clock = std::chrono::steady_clock::now();
-  const detail::Cut cut = detail::cut_points(points, count, options.horizon);
   std::vector<detail::Part> parts(static_cast<std::size_t>(count));
-  detail::fill_parts(points, cut, parts, true);
+  detail::take_lists(detail::PartCut(points, count, options.horizon).lists(points, true), parts);
   const double partition_seconds = detail::seconds_since(clock);
   clock = std::chrono::steady_clock::now();
   detail::on_each_part(count, [&](int p) {
