@@ -5,7 +5,6 @@
 /// This header needs no CUDA headers; it is usable (and throws) when built without CUDA.
 #include <cstdint>
 #include <memory>
-
 #include <vector>
 
 #include "horizon/error.hpp"
