@@ -85,7 +85,7 @@ std::vector<Chunk> chunks_of(std::span<const std::int64_t> offsets) {
 /// A part's rows coming back to the host chunk by chunk, through a pair of staging buffers.
 class PartCopy {
 public:
-  PartCopy(const PartRows& rows) : rows_(rows), chunks_(chunks_of(rows.offsets)) {}
+  explicit PartCopy(const PartRows& rows) : rows_(rows), chunks_(chunks_of(rows.offsets)) {}
   const std::vector<Chunk>& chunks() const { return chunks_; }
 
   /// Starts chunk c's copy into staging buffer c % 2 (a row longer than a buffer: nothing).
