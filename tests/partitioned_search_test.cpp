@@ -171,6 +171,10 @@ TEST(PartitionedSearch, PartsHoldEqualPointCounts) {
   SearchStats stats;
   detail::search_parts(points.view(), options, std::vector<SearchOptions>(4, options), stats);
   for (const PartStats& part : stats.parts) EXPECT_NEAR(part.owned, 50000.0, 1000.0);
+  // A lattice larger than the cut's sample: its planes of 1 % each, the cut on the middle one.
+  const PointSet grid = lattice(100);
+  options.horizon = 0.15;
+  for (const PointPart& part : cut_into_parts(grid.view(), 2, options)) EXPECT_EQ(part.owned.size(), 500000u);
 }
 
 TEST(PartitionedSearch, UnsortedRowsHoldTheSameFamilies) {

@@ -123,6 +123,20 @@ Decomposition Decomposition::rcb(const Bounds& bounds, PointView sample, int ran
                        ids.begin() + static_cast<std::ptrdiff_t>(last),
                        [&](std::size_t a, std::size_t b) { return sample(a, axis) < sample(b, axis); });
       at = sample(ids[k], axis);
+      // Points below the cut: those under `at`, or (the next value up) those at or under it,
+      // whichever is nearer the share. A lattice's planes each hold many points: a sample's k-th
+      // may lie on either side of a boundary, and the first choice alone put 49 of 100 planes
+      // below a cut of 10^6 lattice points in two.
+      std::size_t under = 0, at_or_under = 0;
+      double next = std::numeric_limits<double>::infinity();
+      for (std::size_t i = first; i < last; ++i) {
+        const double v = sample(ids[i], axis);
+        under += v < at;
+        at_or_under += v <= at;
+        if (v > at) next = std::min(next, v);
+      }
+      const std::size_t share = k - first;
+      if (next < std::numeric_limits<double>::infinity() && at_or_under - share < share - under) at = next;
     }
     at = std::clamp(at, box.lo[axis], box.hi[axis]);
     std::size_t middle = first;  // points below the cut first

@@ -22,8 +22,8 @@ struct PartLists {
 
 class PartCut {
 public:
-  /// The boxes of `count` parts (1 to 64) of equal point count, placed on a strided sample of
-  /// at most 2^17 points (equal counts to within a fraction of a percent without sorting all the
+  /// The boxes of `count` parts (1 to 64) of equal point count, placed on a sample of at most
+  /// 2^17 points (equal counts to within a fraction of a percent without sorting all the
   /// points), and the reach of their halos.
   PartCut(PointView points, int count, double horizon);
 
