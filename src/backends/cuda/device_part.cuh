@@ -174,9 +174,7 @@ DevicePart search_local_part(const LocalPart& part, const SearchOptions& given, 
   HORIZON_CUDA_CHECK(cudaMemcpyAsync(&total, offsets.get() + owned, sizeof(total), cudaMemcpyDeviceToHost, stream));
   HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
   if (owned == n) {
-    // Global ids 0 .. n-1 (one part): the local ids are the global ones.
-    const bool identity = n == 0 || (part.global.front() == 0 && part.global.back() == static_cast<point_id>(n - 1));
-    if (total > 0 && !identity) {
+    if (total > 0) {
       to_global_ids<<<std::min(blocks_for(static_cast<std::size_t>(total)), 8192u), block_size, 0, stream>>>(
           DeviceListAccess::indices(local), total, global.get());
       check_launch("to_global_ids");
