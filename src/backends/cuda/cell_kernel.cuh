@@ -159,7 +159,7 @@ __global__ void __launch_bounds__(cell_block) cell_families(DeviceIndexView ix, 
     }
     for (std::int64_t p = b + warp; p < e; p += cell_warps) {
       const point_id self = ix.order[p];
-      if (self >= ix.queries || self < a.first || self >= a.last) continue;
+      if (!ix.has_row(self) || self < a.first || self >= a.last) continue;
       const unsigned* words = a.bits + a.bit_offsets[p];
       point_id* row = a.out + (a.offsets[self] - a.base);
       if (staged) {

@@ -17,6 +17,15 @@
 namespace horizon::detail {
 namespace {
 
+/// How a GPU part names its points (device memory): names[i] is local point i's global id, all
+/// below `bound` and ascending with i (so rows stay sorted and half lists keep j > i); only the
+/// points with own[i] != 0 get families.
+struct PartNaming {
+  const point_id* names;
+  std::int64_t bound;
+  const std::uint8_t* own;
+};
+
 struct Box {
   double lo[3], hi[3];
 };
@@ -133,6 +142,12 @@ __global__ void name_images(const point_id* order, std::int64_t n, std::int64_t 
   if (p < n) id[p] = order[p] < rows ? order[p] : image_of[order[p] - rows];
 }
 
+// id[p] = names[order[p]]: a GPU part's points by their global ids.
+__global__ void name_points(const point_id* order, std::int64_t n, const point_id* names, point_id* id) {
+  const std::int64_t p = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
+  if (p < n) id[p] = names[order[p]];
+}
+
 // start[c] = first sorted position of a cell with linear id >= c.
 __global__ void cell_starts(const std::int64_t* sorted_keys, std::int64_t n, std::int64_t cells,
                             std::int64_t* start) {
@@ -146,11 +161,15 @@ struct DeviceIndexView {
   std::int64_t n, queries;  // points 0 .. queries-1 get families
   const double *x, *y, *z;
   const point_id* order;  // the point at each sorted position (its row)
-  const point_id* id;     // the id families name it by: order, but periodic images as their originals
+  const point_id* id;     // the id families name it by: order, but periodic images as their
+                          // originals and a GPU part's points by their global ids
   const std::int64_t* start;              // dense: linear id -> first sorted position
   const std::int64_t *kx, *ky, *kz;       // sparse: sorted cell coordinates per point
   const std::int64_t* cell_first;         // first sorted position of each occupied cell
   const std::int64_t* cell_count;         // number of occupied cells (one value)
+  const std::uint8_t* row_mask;           // when given, only points with row_mask[id] != 0 get families
+
+  __device__ bool has_row(point_id self) const { return self < queries && (!row_mask || row_mask[self]); }
 
   // Sorted positions of the cells (cx-k .. cx+k, cy, cz).
   __device__ void row(std::int64_t cx, std::int64_t cy, std::int64_t cz, std::int64_t& begin,
@@ -199,11 +218,14 @@ struct PassArgs {
 class DeviceIndex {
 public:
   /// The last `images` of the `count` points may be periodic images, which hold no row; image k
-  /// is found as point image_of[k] (device memory).
+  /// is found as point image_of[k] (device memory). A GPU part's points are named by `naming`
+  /// (device memory), and only its own points get rows.
   DeviceIndex(const double* xyz, std::size_t count, int dims, const SearchOptions& options,
-              cudaStream_t stream, MemoryMeter& meter, std::size_t images = 0, const point_id* image_of = nullptr)
-      : n_(static_cast<std::int64_t>(count)), rows_(static_cast<std::int64_t>(count - images)), x_(count, meter),
-        y_(count, meter), z_(count, meter), order_(count, meter), id_(images ? count : 0, meter), start_(0, meter),
+              cudaStream_t stream, MemoryMeter& meter, std::size_t images = 0, const point_id* image_of = nullptr,
+              const PartNaming* naming = nullptr)
+      : n_(static_cast<std::int64_t>(count)), rows_(static_cast<std::int64_t>(count - images)),
+        name_bound_(naming ? naming->bound : n_), row_mask_(naming ? naming->own : nullptr), x_(count, meter),
+        y_(count, meter), z_(count, meter), order_(count, meter), id_(images || naming ? count : 0, meter), start_(0, meter),
         kx_(0, meter), ky_(0, meter), kz_(0, meter), cell_first_(count, meter), cell_count_(1, meter) {
     grid_ = Grid::from_bounds(reduce_bounds(xyz, count, dims, stream, meter), dims, count, options.horizon,
                               options.cells_per_horizon);
@@ -235,14 +257,20 @@ public:
       name_images<<<blocks_for(count), block_size, 0, stream>>>(order_.get(), n_, rows_, image_of, id_.get());
       check_launch("name_images");
     }
+    if (naming) {
+      name_points<<<blocks_for(count), block_size, 0, stream>>>(order_.get(), n_, naming->names, id_.get());
+      check_launch("name_points");
+    }
   }
 
   DeviceIndexView view(std::size_t queries) const {
     return {params_of(grid_), n_, queries ? static_cast<std::int64_t>(queries) : rows_, x_.get(), y_.get(), z_.get(),
             order_.get(), id_.size() ? id_.get() : order_.get(), start_.get(), kx_.get(), ky_.get(), kz_.get(),
-            cell_first_.get(), cell_count_.get()};
+            cell_first_.get(), cell_count_.get(), row_mask_};
   }
   std::int64_t size() const { return n_; }
+  /// One past the largest id a family may hold.
+  std::int64_t name_bound() const { return name_bound_; }
   /// The points that hold rows: all but the images.
   std::int64_t rows() const { return rows_; }
 
@@ -255,7 +283,8 @@ private:
                    DeviceArray<point_id>& ids_sorted, cudaStream_t stream, MemoryMeter& meter);
   void list_cells(const unsigned char* firsts, cudaStream_t stream, MemoryMeter& meter);
 
-  std::int64_t n_, rows_;
+  std::int64_t n_, rows_, name_bound_;
+  const std::uint8_t* row_mask_;
   Grid grid_;
   DeviceArray<double> x_, y_, z_;
   DeviceArray<point_id> order_, id_;

@@ -16,51 +16,22 @@
 
 namespace horizon::detail {
 
-/// Builds and edits DeviceNeighborLists outside search_device.
-struct DeviceListAccess {
-  static point_id* indices(DeviceNeighborList& list) { return list.indices_.get(); }
-  static void set_offsets(DeviceNeighborList& list, std::int64_t* offsets, point_id* indices, std::size_t rows,
-                          std::int64_t total, cudaStream_t stream) {
-    const DeviceNeighborList::Free free{stream};
-    list.offsets_ = {offsets, free};
-    list.indices_ = {indices, free};
-    list.points_ = rows;
-    list.total_ = total;
-    list.stream_ = stream;
-  }
-};
-
 namespace {
 
-__global__ void to_global_ids(point_id* ids, std::int64_t count, const point_id* global) {
-  const std::int64_t stride = static_cast<std::int64_t>(gridDim.x) * blockDim.x;
-  for (std::int64_t e = static_cast<std::int64_t>(blockIdx.x) * blockDim.x + threadIdx.x; e < count; e += stride)
-    ids[e] = global[ids[e]];
+/// own[rows[k]] = 1: the points of a part that get rows.
+__global__ void mark_own(const point_id* rows, std::int64_t count, std::uint8_t* own) {
+  const std::int64_t k = static_cast<std::int64_t>(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (k < count) own[rows[k]] = 1;
 }
 
-/// For owned row k (local row rows[k]): its length and its point's global id.
-__global__ void owned_row_sizes(const std::int64_t* offsets, const point_id* rows, std::int64_t count,
-                                const point_id* global, std::int64_t* sizes, point_id* ids) {
-  const std::int64_t stride = static_cast<std::int64_t>(gridDim.x) * blockDim.x;
-  for (std::int64_t k = static_cast<std::int64_t>(blockIdx.x) * blockDim.x + threadIdx.x; k < count; k += stride) {
-    const point_id r = rows[k];
-    sizes[k] = offsets[r + 1] - offsets[r];
-    ids[k] = global[r];
-  }
-}
-
-/// Owned row k copied to out + out_offsets[k], its ids mapped to global ids: a warp per row,
-/// its lanes on consecutive entries (coalesced reads and writes).
-__global__ void copy_owned_rows(const std::int64_t* offsets, const point_id* rows, std::int64_t count,
-                                const std::int64_t* out_offsets, const point_id* global, const point_id* in,
-                                point_id* out) {
-  const int lane = static_cast<int>(threadIdx.x % 32);
-  const std::int64_t warps = static_cast<std::int64_t>(gridDim.x) * (blockDim.x / 32);
-  for (std::int64_t k = (static_cast<std::int64_t>(blockIdx.x) * blockDim.x + threadIdx.x) / 32; k < count;
-       k += warps) {
-    const std::int64_t from = offsets[rows[k]], size = offsets[rows[k] + 1] - from;
-    point_id* to = out + out_offsets[k];
-    for (std::int64_t e = lane; e < size; e += 32) to[e] = global[in[from + e]];
+/// The owned rows' offsets in a local list whose other rows are empty, and their global ids:
+/// offsets[k] = local[rows[k]] (row k ends where row k + 1 starts), ids[k] = global[rows[k]].
+__global__ void owned_rows_of(const std::int64_t* local, const point_id* rows, std::int64_t count,
+                              const point_id* global, std::int64_t* offsets, point_id* ids) {
+  const std::int64_t k = static_cast<std::int64_t>(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (k < count) {
+    offsets[k] = local[rows[k]];
+    ids[k] = global[rows[k]];
   }
 }
 
@@ -139,67 +110,44 @@ DevicePart search_local_part(const LocalPart& part, const SearchOptions& given, 
   result.device = options.device;
   result.halo = n - owned;
 
+  // Its points, their global ids and which are its own; then the search, which names every
+  // point by its global id as it stores it and gives the halo empty rows: the list's entries
+  // are the part's rows as they stand, and only their offsets are picked out.
   auto clock = std::chrono::steady_clock::now();
   DeviceArray<point_id> global(n, meter), rows(owned, meter);
+  DeviceArray<std::uint8_t> own(n, meter);
   DeviceNeighborList local;
   {
     DeviceArray<double> xyz(n * static_cast<std::size_t>(part.points.dims()), meter);
     if (n > 0) upload_coordinates(xyz.get(), part.points, stream);
     HORIZON_CUDA_CHECK(cudaMemcpyAsync(global.get(), part.global.data(), global.bytes(), cudaMemcpyHostToDevice, stream));
     HORIZON_CUDA_CHECK(cudaMemcpyAsync(rows.get(), part.owned_rows.data(), rows.bytes(), cudaMemcpyHostToDevice, stream));
+    HORIZON_CUDA_CHECK(cudaMemsetAsync(own.get(), 0, own.bytes(), stream));
+    if (owned > 0) {
+      mark_own<<<blocks_for(owned), block_size, 0, stream>>>(rows.get(), static_cast<std::int64_t>(owned), own.get());
+      check_launch("mark_own");
+    }
     HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
     if (stats) stats->host_to_device_seconds = seconds_since(clock);
     clock = std::chrono::steady_clock::now();
-    local = search_device(xyz.get(), n, part.points.dims(), options, stream);
+    const point_id bound = n > 0 ? part.global.back() + 1 : 0;
+    const PartNaming naming{global.get(), bound, own.get()};
+    local = DeviceListAccess::search(xyz.get(), n, part.points.dims(), options, stream, nullptr, &naming);
   }
-
-  // The owned rows' offsets and global ids, then (with a halo) the rows themselves moved into
-  // a list of their own; without one, the local list is the part's, its ids mapped in place.
-  DeviceArray<std::int64_t> offsets(owned + 1, meter), sizes(owned, meter);
+  DeviceArray<std::int64_t> offsets(owned + 1, meter);
   DeviceArray<point_id> ids(owned, meter);
-  HORIZON_CUDA_CHECK(cudaMemsetAsync(offsets.get(), 0, sizeof(std::int64_t), stream));
+  const std::int64_t total = local.total();
+  HORIZON_CUDA_CHECK(cudaMemcpyAsync(offsets.get() + owned, &total, sizeof(total), cudaMemcpyHostToDevice, stream));
   if (owned > 0) {
-    owned_row_sizes<<<std::min(blocks_for(owned), 8192u), block_size, 0, stream>>>(
-        local.offsets(), rows.get(), static_cast<std::int64_t>(owned), global.get(), sizes.get(), ids.get());
-    check_launch("owned_row_sizes");
-    std::size_t temp_bytes = 0;
-    HORIZON_CUDA_CHECK(cub::DeviceScan::InclusiveSum(nullptr, temp_bytes, sizes.get(), offsets.get() + 1,
-                                                     static_cast<std::int64_t>(owned), stream));
-    DeviceArray<char> temp(temp_bytes, meter);
-    HORIZON_CUDA_CHECK(cub::DeviceScan::InclusiveSum(temp.get(), temp_bytes, sizes.get(), offsets.get() + 1,
-                                                     static_cast<std::int64_t>(owned), stream));
+    owned_rows_of<<<blocks_for(owned), block_size, 0, stream>>>(local.offsets(), rows.get(),
+                                                                static_cast<std::int64_t>(owned), global.get(),
+                                                                offsets.get(), ids.get());
+    check_launch("owned_rows_of");
   }
-  sizes.reset();
-  std::int64_t total = 0;
-  HORIZON_CUDA_CHECK(cudaMemcpyAsync(&total, offsets.get() + owned, sizeof(total), cudaMemcpyDeviceToHost, stream));
-  HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
-  if (owned == n) {
-    if (total > 0) {
-      to_global_ids<<<std::min(blocks_for(static_cast<std::size_t>(total)), 8192u), block_size, 0, stream>>>(
-          DeviceListAccess::indices(local), total, global.get());
-      check_launch("to_global_ids");
-    }
-    result.rows = std::move(local);
-  } else {
-    const std::size_t needed = static_cast<std::size_t>(total) * sizeof(point_id);
-    if (needed > available_device_bytes(meter))
-      throw DeviceOutOfMemory("GPU " + std::to_string(options.device) + ": the part's rows need " +
-                                  std::to_string(needed) + " bytes beside its search's list, " +
-                                  std::to_string(available_device_bytes(meter)) + " are free",
-                              needed, available_device_bytes(meter));
-    DeviceArray<point_id> out(static_cast<std::size_t>(total), meter);
-    if (total > 0) {
-      const std::size_t warps = std::min<std::size_t>(owned, std::size_t{1} << 18);
-      copy_owned_rows<<<blocks_for(warps * 32), block_size, 0, stream>>>(
-          local.offsets(), rows.get(), static_cast<std::int64_t>(owned), offsets.get(), global.get(),
-          local.indices(), out.get());
-      check_launch("copy_owned_rows");
-    }
-    DeviceListAccess::set_offsets(result.rows, offsets.release(), out.release(), owned, total, stream);
-    local = DeviceNeighborList();  // freed on the stream, after the copy
-  }
+  DeviceListAccess::set(result.rows, offsets.release(), DeviceListAccess::release_indices(local), owned, total,
+                        stream);
   result.device_ids = {ids.release(), DeviceNeighborList::Free{stream}};
-  HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
+  HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));  // before `total` and `local` go
   if (stats) {
     stats->backend = Backend::cuda;
     stats->kernel_seconds = stats->search_seconds = seconds_since(clock);

@@ -31,7 +31,7 @@ template <int D>
 __global__ void stencil_words(DeviceIndexView ix, std::int64_t* words) {
   const std::int64_t p = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
   if (p >= ix.n) return;
-  words[p] = ix.order[p] < ix.queries ? (stencil_size<D>(ix, p) + 31) / 32 : 0;
+  words[p] = ix.has_row(ix.order[p]) ? (stencil_size<D>(ix, p) + 31) / 32 : 0;
 }
 
 /// Calls emit(id) for each neighbour of the point at sorted position p, in walk order, from

@@ -33,6 +33,7 @@ template <Metric M, int D, bool Half, typename Emit>
 __device__ int walk_stencil(const DeviceIndexView& ix, std::int64_t p, point_id self, double threshold, Emit emit,
                             unsigned* words = nullptr) {
   const double xi = ix.x[p], yi = ix.y[p], zi = ix.z[p];
+  const point_id name = Half ? ix.id[p] : self;  // half lists compare names (a GPU part's: global ids)
   const std::int64_t cx = ix.grid.cell_of(xi, 0), cy = ix.grid.cell_of(yi, 1);
   const std::int64_t cz = D == 3 ? ix.grid.cell_of(zi, 2) : 0;
   const int k = ix.grid.k, reach_z = D == 3 ? k : 0;
@@ -45,7 +46,7 @@ __device__ int walk_stencil(const DeviceIndexView& ix, std::int64_t p, point_id 
       for (std::int64_t q = begin; q < end; ++q, ++stencil) {
         const double d = metric_accumulate<M>(xi - ix.x[q], yi - ix.y[q], D == 3 ? zi - ix.z[q] : 0.0);
         const point_id other = ix.id[q];
-        const bool hit = d < threshold && (Half ? other > self : q != p);
+        const bool hit = d < threshold && (Half ? other > name : q != p);
         if (hit) emit(other);
         if (words) {
           word |= static_cast<unsigned>(hit) << (stencil & 31);
@@ -124,7 +125,7 @@ __global__ void __launch_bounds__(block_size) count_families(DeviceIndexView ix,
   if (p < ix.n) {
     const point_id self = ix.order[p];
     int found = 0;
-    if (self < ix.queries) {
+    if (ix.has_row(self)) {
       unsigned* words = a.bits ? a.bits + a.bit_offsets[p] : nullptr;
       int stencil;
       if constexpr (Half)
@@ -152,7 +153,7 @@ __global__ void fill_families(DeviceIndexView ix, PassArgs a) {
   const std::int64_t p = a.position_first + blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
   if (p >= a.position_last) return;
   const point_id self = ix.order[p];
-  if (self >= ix.queries || self < a.first || self >= a.last) return;
+  if (!ix.has_row(self) || self < a.first || self >= a.last) return;
   point_id* row = a.out + (a.offsets[self] - a.base);
   int found = 0;
   const auto store = [&](point_id other) { row[found++] = other; };
@@ -176,7 +177,7 @@ __global__ void __launch_bounds__(staged_block(Rows)) fill_short_rows(DeviceInde
   point_id self = 0;
   if (p < a.position_last) {
     self = ix.order[p];
-    if (self < ix.queries && self >= a.first && self < a.last) {
+    if (ix.has_row(self) && self >= a.first && self < a.last) {
       const unsigned* words = a.bits + a.bit_offsets[p];
       if (a.offsets[self + 1] - a.offsets[self] <= Rows) {
         walk_hits<D>(ix, p, words, [&](point_id other) { rows[found++ * pitch + lane] = other; });

@@ -31,7 +31,7 @@ __global__ void piece_positions(DeviceIndexView ix, std::int64_t ids_per_piece, 
   __syncthreads();
   const std::int64_t p = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
   const point_id self = p < ix.n ? ix.order[p] : ix.queries;
-  const int piece = self < ix.queries ? static_cast<int>(self / ids_per_piece) : -1;  // -1: holds no row
+  const int piece = ix.has_row(self) ? static_cast<int>(self / ids_per_piece) : -1;  // -1: holds no row
   const unsigned same = __match_any_sync(0xffffffffu, piece);
   const int lane = threadIdx.x % 32;
   if (piece >= 0 && lane == __ffs(same) - 1) atomicMin(&block_lo[piece], static_cast<unsigned>(p));

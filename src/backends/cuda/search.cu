@@ -38,6 +38,24 @@
 
 namespace horizon {
 namespace detail {
+
+/// What builds and edits DeviceNeighborLists besides search_device: the search of a GPU part
+/// (its points named by their global ids, rows for its own points only; device_part.cuh).
+struct DeviceListAccess {
+  static DeviceNeighborList search(const double* xyz, std::size_t count, int dims, const SearchOptions& options,
+                                   cuda_stream stream, SearchStats* stats, const PartNaming* naming);
+  static point_id* release_indices(DeviceNeighborList& list) { return list.indices_.release(); }
+  static void set(DeviceNeighborList& list, std::int64_t* offsets, point_id* indices, std::size_t rows,
+                  std::int64_t total, cuda_stream stream) {
+    const DeviceNeighborList::Free free{stream};
+    list.offsets_ = {offsets, free};
+    list.indices_ = {indices, free};
+    list.points_ = rows;
+    list.total_ = total;
+    list.stream_ = stream;
+  }
+};
+
 namespace {
 
 // ---- Build ----------------------------------------------------------------------------------
@@ -69,10 +87,10 @@ int id_bits(std::int64_t n) {
   return bits;
 }
 
-PassArgs pass_args(const SearchOptions& o, std::int64_t n) {
+PassArgs pass_args(const SearchOptions& o, std::int64_t n, std::int64_t name_bound) {
   PassArgs a{};
   a.threshold = metric_threshold(o.metric, o.horizon);
-  a.sort_bits = id_bits(n);
+  a.sort_bits = id_bits(name_bound);
   a.position_last = n;
   return a;
 }
@@ -138,7 +156,7 @@ Counts count_offsets(const DeviceIndex& index, const SearchOptions& options, std
       summary(5, meter);
   DeviceArray<unsigned> piece_bounds(2 * row_pieces, meter);
   HORIZON_CUDA_CHECK(cudaMemsetAsync(summary.get(), 0, summary.bytes(), stream));
-  PassArgs args = pass_args(options, index.size());
+  PassArgs args = pass_args(options, index.size(), index.name_bound());
   args.counts = counts.get();
   args.widest = reinterpret_cast<unsigned long long*>(summary.get() + 2);
   args.long_rows = reinterpret_cast<unsigned long long*>(summary.get() + 4);
@@ -229,7 +247,7 @@ point_id* fill_rows(const DeviceIndex& index, const SearchOptions& options, cons
                     point_id* spare, cudaStream_t stream, MemoryMeter& meter) {
   if (entries == 0) return rows_out;
   const DeviceIndexView ix = index.view(options.queries);
-  PassArgs args = pass_args(options, index.size());
+  PassArgs args = pass_args(options, index.size(), index.name_bound());
   args.offsets = counts.offsets.get();
   args.out = rows_out;
   args.first = first;
@@ -555,6 +573,12 @@ NeighborList DeviceNeighborList::to_host(bool half) const {
 
 DeviceNeighborList search_device(const double* xyz, std::size_t count, int dims,
                                  const SearchOptions& options, cuda_stream stream, SearchStats* stats) {
+  return detail::DeviceListAccess::search(xyz, count, dims, options, stream, stats, nullptr);
+}
+
+DeviceNeighborList detail::DeviceListAccess::search(const double* xyz, std::size_t count, int dims,
+                                                    const SearchOptions& options, cuda_stream stream,
+                                                    SearchStats* stats, const PartNaming* naming) {
   validate_horizon(options.horizon, options.cells_per_horizon);
   if (dims != 2 && dims != 3) throw Error("points must have 2 or 3 coordinates, not " + std::to_string(dims));
   DeviceNeighborList list;
@@ -576,7 +600,7 @@ DeviceNeighborList search_device(const double* xyz, std::size_t count, int dims,
     local = detail::append_images_on_device(xyz, count, detail::PeriodicBox(options, dims), stream, meter);
   }
   const detail::DeviceIndex index(local.images ? local.xyz.get() : xyz, count + local.images, dims, options, stream,
-                                  meter, local.images, local.image_of.get());
+                                  meter, local.images, local.image_of.get(), naming);
   if (stats) {
     HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
     stats->grid_seconds = detail::seconds_since(start);
