@@ -22,6 +22,7 @@ PartCut::PartCut(PointView points, int count, double horizon) : count_(count) {
   constexpr std::size_t most = std::size_t{1} << 17;
   const std::size_t n = points.size(), draws = std::min(n, most);
   PointSet sample{points.dims(), std::vector<double>(draws * static_cast<std::size_t>(points.dims()))};
+#pragma omp parallel for schedule(static)
   for (std::size_t k = 0; k < draws; ++k) {
     std::uint64_t h = k + 0x9e3779b97f4a7c15ull;  // splitmix64
     h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ull;
