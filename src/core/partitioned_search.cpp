@@ -72,14 +72,17 @@ void take_lists(std::vector<PartLists>&& lists, std::vector<Part>& parts) {
   }
 }
 
-/// Runs work(p) for every part on a thread of its own; the first failure is rethrown once all
-/// have ended.
+/// Runs work(p) for every part on a thread of its own, its OpenMP regions on a share of the
+/// caller's threads (a thread of its own starts teams of its own: p teams of every core crowded
+/// the cores); the first failure is rethrown once all have ended.
 template <class Work>
 void on_each_part(int count, Work&& work) {
   std::vector<std::exception_ptr> failures(static_cast<std::size_t>(count));
   std::vector<std::thread> threads;
+  const int share = std::max(1, omp_get_max_threads() / count);
   for (int p = 0; p < count; ++p)
     threads.emplace_back([&, p] {
+      omp_set_num_threads(share);
       try {
         work(p);
       } catch (...) {
