@@ -21,7 +21,8 @@ for symbol in horizon_search horizon_search_radii horizon_search_queries horizon
               horizon_verlet_refresh horizon_last_error horizon_version 'horizon::search(' 'horizon::version()'; do
   grep -qF "$symbol" "$work/exports.txt" || { echo "libhorizon.so does not export $symbol"; exit 1; }
 done
-ldd "$shared_cli" | grep -q 'libhorizon.so.1 =>' || { echo "$shared_cli is not linked to libhorizon.so.1"; exit 1; }
+# grep reads all of ldd's output: with -q it could stop early and pipefail took ldd's SIGPIPE for a failure.
+ldd "$shared_cli" | grep 'libhorizon.so.1 =>' > /dev/null || { echo "$shared_cli is not linked to libhorizon.so.1"; exit 1; }
 "$static_cli" search lattice:20 --horizon 1.5075 --out "$work/static" --quiet
 "$shared_cli" search lattice:20 --horizon 1.5075 --out "$work/shared" --quiet
 cmp "$work/static.offsets.npy" "$work/shared.offsets.npy" && cmp "$work/static.indices.npy" "$work/shared.indices.npy"
