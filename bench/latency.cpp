@@ -11,6 +11,7 @@
 #include <functional>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "horizon/generate.hpp"
 #include "horizon/search.hpp"
@@ -94,7 +95,11 @@ int run_latency(const LatencyOptions& options) {
       const Calls textbook = time_calls([&] { entries = static_cast<long long>(textbook_cell_list(points, 1.0, 1).indices.size()); },
                                         options.seconds);
       report("textbook", 1, textbook, entries);
-      for (horizon::Backend backend : {horizon::Backend::serial, horizon::Backend::openmp, horizon::Backend::automatic}) {
+      // The GPU's host path where one is present: its warmed-up calls, host to host.
+      std::vector<horizon::Backend> backends{horizon::Backend::serial, horizon::Backend::openmp};
+      if (horizon::backend_available(horizon::Backend::cuda)) backends.push_back(horizon::Backend::cuda);
+      backends.push_back(horizon::Backend::automatic);
+      for (horizon::Backend backend : backends) {
         horizon::SearchOptions search;
         search.horizon = 1.0;
         search.backend = backend;
