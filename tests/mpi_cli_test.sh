@@ -143,4 +143,24 @@ done
 "$mpiexec" --oversubscribe -np 3 "$horizon" search points.npy --queries queries.npy --radii query_radii.txt \
   --out qr_vtk --vtk qr.vtu --quiet
 cmp serial_qr.vtu qr.vtu
+# An atomistic system under mpirun: a triclinic cell from an extended XYZ file (open along c),
+# atoms in and around it, a cutoff larger than half the cell; ids, shifts, distances and vectors
+# from both writers are the one-node files, every exchange. A smaller cell from --cell, half.
+awk 'BEGIN { srand(11); print 3000; print "Lattice=\"8 0 0 2 7 0 1 1.5 6\" Properties=species:S:1:pos:R:3 pbc=\"T T F\"";
+  for (i = 0; i < 3000; i++) { f = 1.4 * rand() - 0.2; g = 1.4 * rand() - 0.2; h = rand();
+    printf "Si %.17g %.17g %.17g\n", 8 * f + 2 * g + h, 7 * g + 1.5 * h, 6 * h } }' > cell.extxyz
+"$horizon" search cell.extxyz --horizon 4.5 --outputs d,D,S --backend serial --out serial_cell --quiet
+for exchange in thesis halo overlap; do
+  for writer in gather parallel; do
+    "$mpiexec" --oversubscribe -np 3 "$horizon" search cell.extxyz --horizon 4.5 --outputs d,D,S \
+      --exchange "$exchange" --writer "$writer" --out "cell_$exchange" --quiet
+    for array in offsets indices shifts distances vectors; do cmp "serial_cell.$array.npy" "cell_$exchange.$array.npy"; done
+  done
+done
+head -300 box.xyz > small.xyz
+"$horizon" search small.xyz --horizon 0.9 --cell "1.5 0 0 0.4 1.2 0 0.2 0.3 1.1" --pbc 1,1,1 --half --outputs S \
+  --self-interaction --backend serial --out serial_small --quiet
+"$mpiexec" --oversubscribe -np 2 "$horizon" search small.xyz --horizon 0.9 --cell "1.5 0 0 0.4 1.2 0 0.2 0.3 1.1" \
+  --pbc 1,1,1 --half --outputs S --self-interaction --exchange halo --out small --quiet
+for array in offsets indices shifts; do cmp "serial_small.$array.npy" "small.$array.npy"; done
 echo "mpirun CLI: all strategies and both writers identical to serial"

@@ -3,11 +3,19 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <fstream>
+#include <iterator>
+#include <random>
+
 #include "datasets.hpp"
+#include "random_cells.hpp"
 #include "random_problems.hpp"
 #include "horizon/oracle.hpp"
 #include "horizon/distributed.hpp"
+#include "horizon/error.hpp"
+#include "horizon/generate.hpp"
 #include "horizon/grid.hpp"
+#include "horizon/io.hpp"
 #include "horizon/radii.hpp"
 #include "horizon/search.hpp"
 
@@ -289,6 +297,110 @@ TEST(Distributed, QueriesAmongReferencesOnEveryDataset) {
     options.exchange = s.exchange;
     options.decomposition = s.decomposition;
     EXPECT_TRUE(queries_match(queries, references, options, expected)) << "periodic " << describe(s);
+  }
+}
+
+TEST(Distributed, CellsEqualTheOracleWithTheirGeometry) {
+  // Random cells (some nearly degenerate), horizons of several cells, points anywhere, shifts,
+  // distances and vectors, half lists and self_interaction: every strategy, as on one node.
+  std::mt19937_64 rng(5800);
+  const Metric metrics[] = {Metric::euclidean, Metric::euclidean, Metric::manhattan, Metric::chebyshev};
+  for (int problem = 0; problem < 20; ++problem) {
+    const int dims = problem % 4 == 3 ? 2 : 3;
+    const Cell cell = random_cell(rng, dims, problem % 5 == 0 ? 0.05 : 0.3);
+    // A few points (all tested against all on a rank) to a few hundred (the grid's search).
+    const std::size_t n = problem % 3 == 0 ? 1 + rng() % 12 : 100 + rng() % 300;
+    const PointSet points = points_around(cell, dims, n, rng);
+    const Strategy& s = strategies[static_cast<std::size_t>(problem) % std::size(strategies)];
+    DistributedOptions options;
+    options.exchange = s.exchange;
+    options.decomposition = s.decomposition;
+    options.search.backend = problem % 2 ? Backend::openmp : Backend::serial;
+    options.search.cell = cell;
+    options.search.metric = metrics[problem % 4];
+    options.search.horizon = std::uniform_real_distribution<double>(0.3, n < 20 ? 4.0 : 1.5)(rng);
+    options.search.half = problem % 3 == 1;
+    options.search.self_interaction = problem % 4 == 0;
+    options.search.outputs = {problem % 5 != 1, true, problem % 5 != 2};
+    const NeighborList expected = oracle_on_root(points, options.search);
+    EXPECT_TRUE(matches_serial(points, options, nullptr, &expected))
+        << "problem " << problem << ", " << dims << "-D, " << n << " points, horizon " << options.search.horizon
+        << ", " << describe(s);
+  }
+}
+
+TEST(Distributed, CellsWithPerAtomRadiiAndOutputsOfABox) {
+  std::mt19937_64 rng(5801);
+  for (int problem = 0; problem < 8; ++problem) {
+    const Cell cell = random_cell(rng, 3, 0.3);
+    const PointSet points = points_around(cell, 3, 20 + rng() % 200, rng);
+    std::vector<double> radii(points.size());
+    for (double& r : radii) r = std::uniform_real_distribution<double>(0.1, 0.8)(rng);
+    DistributedOptions options;
+    options.exchange = strategies[static_cast<std::size_t>(problem) % std::size(strategies)].exchange;
+    options.search.cell = cell;
+    options.search.half = problem % 2 == 0;
+    options.search.outputs.distances = true;
+    const RadiusRule rule = problem % 3 == 0 ? RadiusRule::max : RadiusRule::sum;
+    const Radii with{radii, rule};
+    NeighborList expected;
+    if (rank_id() == 0) expected = brute_force_with_radii(points.view(), radii, rule, options.search);
+    EXPECT_TRUE(matches_serial(points, options, nullptr, &expected, &with)) << "radii, problem " << problem;
+  }
+  // An orthorhombic box with outputs takes the same path.
+  const PointSet cubes = lattice(6, 3, 6.0);
+  DistributedOptions options;
+  options.search.horizon = 1.5;
+  options.search.box = {6, 6, 6};
+  options.search.outputs = {true, true, true};
+  EXPECT_TRUE(matches_serial(cubes, options)) << "box with outputs";
+}
+
+TEST(Distributed, CellGeometryFilesEqualTheSerialWriter) {
+  std::mt19937_64 rng(5802);
+  const Cell cell = random_cell(rng, 3, 0.3);
+  const PointSet points = points_around(cell, 3, 150, rng);
+  DistributedOptions options;
+  options.search.cell = cell;
+  options.search.horizon = 1.2;
+  options.search.outputs = {true, true, true};
+  std::vector<std::int64_t> ids;
+  const PointSet held = held_block(points, options, ids);
+  const OwnedRows rows = search_distributed(MPI_COMM_WORLD, held.view(), ids, points.size(), options);
+  const std::string directory = ::testing::TempDir();
+  const std::string parallel = directory + "/cell_parallel", serial = directory + "/cell_serial";
+  const std::string written = write_rows_parallel(MPI_COMM_WORLD, rows, points.size(), parallel);
+  const NeighborList gathered = gather_rows(MPI_COMM_WORLD, rows, points.size(), false);
+  int same = 1;
+  if (rank_id() == 0) {
+    const std::string expected = write_neighbor_list(serial, gathered, ListFormat::npy);
+    EXPECT_EQ(written, parallel + ".offsets.npy," + parallel + ".indices.npy," + parallel + ".shifts.npy," + parallel +
+                           ".distances.npy," + parallel + ".vectors.npy");
+    EXPECT_EQ(expected.size(), written.size() - parallel.size() * 5 + serial.size() * 5);
+    for (const char* suffix : {".offsets.npy", ".indices.npy", ".shifts.npy", ".distances.npy", ".vectors.npy"}) {
+      std::ifstream a(parallel + suffix, std::ios::binary), b(serial + suffix, std::ios::binary);
+      const std::string x((std::istreambuf_iterator<char>(a)), {}), y((std::istreambuf_iterator<char>(b)), {});
+      same = same && !x.empty() && x == y;
+      EXPECT_EQ(x, y) << suffix;
+    }
+  }
+  MPI_Bcast(&same, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  EXPECT_EQ(same, 1);
+}
+
+TEST(Distributed, CellIdsOutsideTheRangeAreRefusedOnEveryRank) {
+  const PointSet points = lattice(4, 3, 4.0);
+  DistributedOptions options;
+  options.search.horizon = 1.5;
+  options.search.cell = Cell::orthorhombic({4, 4, 4});
+  std::vector<std::int64_t> ids;
+  const PointSet held = held_block(points, options, ids);
+  for (std::int64_t& id : ids) id += 1;  // the last rank's last id is out of [0, n)
+  try {
+    search_distributed(MPI_COMM_WORLD, held.view(), ids, points.size(), options);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("global id 64, not in [0, 64)"), std::string::npos) << e.what();
   }
 }
 

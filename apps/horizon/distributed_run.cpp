@@ -70,7 +70,8 @@ void run_distributed(const SearchArgs& args) {
     throw Error("--vtk, --bond-filters and --block-pairs need the whole list on rank 0: use --writer gather (or auto)");
   const Progress progress(args.quiet || rank != 0);
   Stopwatch clock;
-  PointSet all = load_input(args.input);
+  Structure structure = load_structure(args.input);  // points, and an atomistic file's cell
+  PointSet& all = structure.points;
   if (!args.blocks.empty()) all.blocks = read_blocks(args.blocks, all.size());
   const PointSet queries = args.queries.empty() ? PointSet{} : load_input(args.queries);
   const PointSet& row_points = args.queries.empty() ? all : queries;  // the rows
@@ -93,7 +94,13 @@ void run_distributed(const SearchArgs& args) {
   const double read_seconds = clock.lap();
 
   DistributedOptions options;
-  options.search = search_options(args);
+  options.search = search_options(args, structure.cell);
+  if ((!filters.empty() || !block_pairs.pairs.empty()) && options.search.outputs.any())
+    throw Error("--outputs with --bond-filters or --block-pairs: not supported (the filters keep ids only)");
+  if (args.format == "csv" && options.search.outputs.any())
+    throw Error(args.out + ": shifts, distances and vectors are written as .npy files, not csv");
+  if (!filters.empty() && options.search.cell.periodic())
+    throw Error("--bond-filters with --cell: bonds across the periodic faces have no single segment; not supported");
   for (const double r : radii) options.search.horizon = std::max(options.search.horizon, r);  // the filters' reach
   bind_rank_to_gpu(options.search);
   options.exchange = parse_exchange(args.exchange.empty() ? "halo" : args.exchange);

@@ -23,11 +23,7 @@ namespace {
 
 void run_search(const SearchArgs& args) {
 #if defined(HORIZON_WITH_MPI)
-  if (distributed_requested(args)) {
-    if (!args.cell.empty() || !args.outputs.empty() || args.self_interaction || is_structure_file(args.input))
-      throw Error("--cell, --outputs, --self-interaction and structure files: not supported under mpirun yet");
-    return run_distributed(args);
-  }
+  if (distributed_requested(args)) return run_distributed(args);
 #endif
   const Progress progress(args.quiet);
   check_output(args);

@@ -53,6 +53,13 @@ struct OwnedRows {
 /// Collective over `comm`. With thesis or halo, `points` are the points this rank holds and
 /// `ids` their global ids (any split; a rank may hold none). With overlap, every rank passes
 /// all points and ids is ignored.
+///
+/// A periodic cell of any shape (SearchOptions::cell), shifts, distances or vectors
+/// (SearchOptions::outputs) and self_interaction are searched as on one node (cell.hpp): the
+/// rows carry their geometry and equal search()'s. Each rank then holds the points of one
+/// block of ids (they move there first, whatever the split), makes their periodic images and
+/// finds every point's candidates among all images with the query search below (overlap uses
+/// the halo exchange for it); the ids must be 0 to global_count - 1, each held once.
 OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<std::int64_t>& ids,
                              std::size_t global_count, const DistributedOptions& options,
                              DistributedStats* stats = nullptr);
@@ -75,8 +82,9 @@ OwnedRows search_distributed_queries(MPI_Comm comm, PointView queries, const std
                                      const DistributedOptions& options, std::span<const double> radii = {},
                                      DistributedStats* stats = nullptr);
 
-/// Collective: the whole list in global id order on `root` (an empty list elsewhere), sent
-/// point to point by rank in chunks (no 2^31 limit on a rank's entries).
+/// Collective: the whole list in global id order on `root` (an empty list elsewhere), with the
+/// shifts, distances and vectors a cell search computed, sent point to point by rank in chunks
+/// (no 2^31 limit on a rank's entries).
 NeighborList gather_rows(MPI_Comm comm, const OwnedRows& owned, std::size_t global_count, bool half,
                          int root = 0);
 
@@ -85,7 +93,8 @@ NeighborList gather_rows(MPI_Comm comm, const OwnedRows& owned, std::size_t glob
 /// available. The same answer on every rank.
 bool gather_fits(MPI_Comm comm, std::int64_t entries, const SearchOptions& options, int root = 0);
 
-/// Collective: writes PREFIX.indices.npy and PREFIX.offsets.npy, byte for byte the files of
+/// Collective: writes PREFIX.indices.npy and PREFIX.offsets.npy (and the geometry files of a
+/// cell search's outputs), byte for byte the files of
 /// write_neighbor_list(prefix, gather_rows(...)), each rank writing its own rows at their
 /// offsets with positioned writes (no rank holds the whole list; every rank must see the
 /// directory). Under temporary names, renamed once every rank has written; throws

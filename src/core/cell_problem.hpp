@@ -47,6 +47,8 @@ struct CellProblem {
   double threshold(std::size_t i, std::size_t j) const {
     return metric_threshold(metric, radii.empty() ? horizon : pair_radius(rule, radii[i], radii[j]));
   }
+  /// The same for a pair whose radii are given (the distributed search holds them elsewhere).
+  double threshold_of(double ri, double rj) const { return metric_threshold(metric, pair_radius(rule, ri, rj)); }
   /// How far (in cells, along periodic axis a) an image within the largest horizon can be: the
   /// metric's ball fits in the Euclidean one of radius largest (sqrt(dims) times it for Chebyshev).
   double cells_reach(int a) const {

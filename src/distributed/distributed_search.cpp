@@ -7,9 +7,11 @@
 #include <numeric>
 #include <optional>
 
+#include "../core/cell_search.hpp"
 #include "../core/memory_check.hpp"
 #include "../core/partitioned_search.hpp"
 #include "../core/reference_search.hpp"
+#include "distributed_cell_search.hpp"
 #include "exchange.hpp"
 #include "horizon/distributed.hpp"
 #include "horizon/error.hpp"
@@ -373,12 +375,16 @@ OwnedRows distributed_rows(MPI_Comm comm, PointView points, const std::vector<st
 OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<std::int64_t>& ids,
                              std::size_t global_count, const DistributedOptions& options,
                              DistributedStats* stats) {
+  if (detail::needs_cell_search(options.search))
+    return detail::search_distributed_cell(comm, points, ids, {}, std::nullopt, global_count, options, stats);
   return distributed_rows(comm, points, ids, {}, std::nullopt, global_count, options, stats);
 }
 
 OwnedRows search_distributed(MPI_Comm comm, PointView points, const std::vector<std::int64_t>& ids,
                              std::span<const double> radii, RadiusRule rule, std::size_t global_count,
                              const DistributedOptions& options, DistributedStats* stats) {
+  if (detail::needs_cell_search(options.search))
+    return detail::search_distributed_cell(comm, points, ids, radii, rule, global_count, options, stats);
   DistributedOptions reach = options;  // the ghosts reach the largest radius of all
   reach.search.horizon = largest_radius(comm, points, ids, radii, rule, options.search);
   return distributed_rows(comm, points, ids, radii, rule, global_count, reach, stats);
@@ -390,6 +396,8 @@ OwnedRows search_distributed_queries(MPI_Comm comm, PointView queries, const std
                                      const DistributedOptions& options, std::span<const double> radii,
                                      DistributedStats* stats) {
   if (options.search.half) throw Error("half lists are about one point set, not queries against references");
+  if (detail::needs_cell_search(options.search))
+    throw Error("cell: queries cannot be combined with a cell, outputs or self_interaction");
   if (queries.dims() != references.dims())
     throw Error("queries are " + std::to_string(queries.dims()) + "-D but the references " +
                 std::to_string(references.dims()) + "-D");
@@ -436,10 +444,13 @@ NeighborList gather_rows(MPI_Comm comm, const OwnedRows& owned, std::size_t glob
   int id = 0, size = 1;
   MPI_Comm_rank(comm, &id);
   MPI_Comm_size(comm, &size);
-  constexpr std::size_t chunk = std::size_t{1} << 28;  // entries per message
+  constexpr std::size_t chunk = std::size_t{1} << 28;  // items per message
   const std::int64_t header[2] = {static_cast<std::int64_t>(owned.ids.size()), owned.rows.total()};
   std::vector<std::int64_t> headers(static_cast<std::size_t>(2 * size));
   MPI_Gather(header, 2, MPI_INT64_T, headers.data(), 2, MPI_INT64_T, root, comm);
+  // The per-entry geometry of a cell search travels beside the ids (every rank asked for the same).
+  const PairOutputs outputs = owned.rows.outputs();
+  const auto dims = static_cast<std::size_t>(owned.rows.geometry_dims());
 
   auto send_all = [&](const void* data, std::size_t count, MPI_Datatype type, std::size_t item) {
     for (std::size_t at = 0; at < count; at += chunk)
@@ -452,6 +463,9 @@ NeighborList gather_rows(MPI_Comm comm, const OwnedRows& owned, std::size_t glob
     send_all(owned.ids.data(), owned.ids.size(), MPI_INT64_T, 8);
     send_all(lengths.data(), lengths.size(), MPI_INT64_T, 8);
     send_all(owned.rows.indices().data(), owned.rows.indices().size(), MPI_INT32_T, 4);
+    send_all(owned.rows.shifts().data(), owned.rows.shifts().size(), MPI_INT32_T, 4);
+    send_all(owned.rows.distances().data(), owned.rows.distances().size(), MPI_DOUBLE, 8);
+    send_all(owned.rows.vectors().data(), owned.rows.vectors().size(), MPI_DOUBLE, 8);
     return NeighborList({0}, {}, half);
   }
   auto receive_all = [&](void* data, std::size_t count, MPI_Datatype type, std::size_t item, int from) {
@@ -459,42 +473,60 @@ NeighborList gather_rows(MPI_Comm comm, const OwnedRows& owned, std::size_t glob
       MPI_Recv(static_cast<char*>(data) + at * item, static_cast<int>(std::min(chunk, count - at)), type, from, 0,
                comm, MPI_STATUS_IGNORE);
   };
-  // Per rank: global ids, row lengths, entries.
-  std::vector<std::vector<std::int64_t>> ids(static_cast<std::size_t>(size)), lengths(static_cast<std::size_t>(size));
-  std::vector<Buffer<point_id>> entries(static_cast<std::size_t>(size));
+  // Per rank: global ids, row lengths, entries (and their geometry).
+  struct Received {
+    std::vector<std::int64_t> ids, lengths;
+    NeighborList rows;
+  };
+  std::vector<Received> ranks(static_cast<std::size_t>(size));
   for (int r = 0; r < size; ++r) {
     const auto n = static_cast<std::size_t>(headers[static_cast<std::size_t>(2 * r)]);
     const auto total = static_cast<std::size_t>(headers[static_cast<std::size_t>(2 * r + 1)]);
-    auto& rid = ids[static_cast<std::size_t>(r)];
-    auto& rlen = lengths[static_cast<std::size_t>(r)];
+    Received& from = ranks[static_cast<std::size_t>(r)];
     if (r == root) {
-      rid = owned.ids;
-      for (std::size_t i = 0; i < n; ++i) rlen.push_back(static_cast<std::int64_t>(owned.rows.row_size(i)));
+      from.ids = owned.ids;
+      for (std::size_t i = 0; i < n; ++i) from.lengths.push_back(static_cast<std::int64_t>(owned.rows.row_size(i)));
       continue;
     }
-    rid.resize(n);
-    rlen.resize(n);
-    entries[static_cast<std::size_t>(r)].resize(total);
-    receive_all(rid.data(), n, MPI_INT64_T, 8, r);
-    receive_all(rlen.data(), n, MPI_INT64_T, 8, r);
-    receive_all(entries[static_cast<std::size_t>(r)].data(), total, MPI_INT32_T, 4, r);
+    from.ids.resize(n);
+    from.lengths.resize(n);
+    Buffer<point_id> indices(total);
+    Buffer<std::int32_t> shifts(outputs.shifts ? total * dims : 0);
+    Buffer<double> distances(outputs.distances ? total : 0), vectors(outputs.vectors ? total * dims : 0);
+    receive_all(from.ids.data(), n, MPI_INT64_T, 8, r);
+    receive_all(from.lengths.data(), n, MPI_INT64_T, 8, r);
+    receive_all(indices.data(), total, MPI_INT32_T, 4, r);
+    receive_all(shifts.data(), shifts.size(), MPI_INT32_T, 4, r);
+    receive_all(distances.data(), distances.size(), MPI_DOUBLE, 8, r);
+    receive_all(vectors.data(), vectors.size(), MPI_DOUBLE, 8, r);
+    from.rows = NeighborList({0}, std::move(indices), half);
+    from.rows.set_geometry(outputs, std::move(shifts), std::move(distances), std::move(vectors), static_cast<int>(dims));
   }
   Buffer<std::int64_t> offsets(global_count + 1, 0);
-  for (int r = 0; r < size; ++r)
-    for (std::size_t i = 0; i < ids[static_cast<std::size_t>(r)].size(); ++i)
-      offsets[static_cast<std::size_t>(ids[static_cast<std::size_t>(r)][i]) + 1] = lengths[static_cast<std::size_t>(r)][i];
+  for (const Received& from : ranks)
+    for (std::size_t i = 0; i < from.ids.size(); ++i) offsets[static_cast<std::size_t>(from.ids[i]) + 1] = from.lengths[i];
   std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
-  Buffer<point_id> indices(static_cast<std::size_t>(offsets.back()));
+  const auto total = static_cast<std::size_t>(offsets.back());
+  Buffer<point_id> indices(total);
+  Buffer<std::int32_t> shifts(outputs.shifts ? total * dims : 0);
+  Buffer<double> distances(outputs.distances ? total : 0), vectors(outputs.vectors ? total * dims : 0);
   for (int r = 0; r < size; ++r) {
-    const point_id* from = r == root ? owned.rows.indices().data() : entries[static_cast<std::size_t>(r)].data();
-    for (std::size_t i = 0; i < ids[static_cast<std::size_t>(r)].size(); ++i) {
-      const auto g = static_cast<std::size_t>(ids[static_cast<std::size_t>(r)][i]);
-      const auto length = static_cast<std::size_t>(lengths[static_cast<std::size_t>(r)][i]);
-      std::copy(from, from + length, indices.begin() + offsets[g]);
-      from += length;
+    const Received& from = ranks[static_cast<std::size_t>(r)];
+    const NeighborList& rows = r == root ? owned.rows : from.rows;
+    std::size_t at = 0;  // the rank's entry
+    for (std::size_t i = 0; i < from.ids.size(); ++i) {
+      const auto to = static_cast<std::size_t>(offsets[static_cast<std::size_t>(from.ids[i])]);
+      const auto length = static_cast<std::size_t>(from.lengths[i]);
+      std::copy_n(rows.indices().data() + at, length, indices.data() + to);
+      if (outputs.shifts) std::copy_n(rows.shifts().data() + at * dims, length * dims, shifts.data() + to * dims);
+      if (outputs.distances) std::copy_n(rows.distances().data() + at, length, distances.data() + to);
+      if (outputs.vectors) std::copy_n(rows.vectors().data() + at * dims, length * dims, vectors.data() + to * dims);
+      at += length;
     }
   }
-  return NeighborList(std::move(offsets), std::move(indices), half);
+  NeighborList list(std::move(offsets), std::move(indices), half);
+  list.set_geometry(outputs, std::move(shifts), std::move(distances), std::move(vectors), static_cast<int>(dims));
+  return list;
 }
 
 }  // namespace horizon

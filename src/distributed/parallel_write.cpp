@@ -1,5 +1,5 @@
 // Every rank writes the rows it owns straight into PREFIX.indices.npy and PREFIX.offsets.npy
-// with positioned writes (the files must be on a filesystem every rank sees), at the offsets a
+// (and a cell search's PREFIX.shifts.npy, .distances.npy, .vectors.npy) with positioned writes (the files must be on a filesystem every rank sees), at the offsets a
 // distributed scan of the row lengths gives: no rank holds the whole list. The files are
 // byte-identical to write_neighbor_list of the gathered list and as atomic: written under
 // temporary names, renamed by rank 0 once every rank has written its part. (MPI-IO collective
@@ -17,6 +17,7 @@
 #include <numeric>
 
 #include "../io/npy.hpp"
+#include "agree.hpp"
 #include "horizon/distributed.hpp"
 #include "horizon/error.hpp"
 
@@ -24,22 +25,7 @@ namespace horizon {
 
 namespace {
 
-/// Throws CollectiveError on every rank when any rank failed, with the first failing rank's message.
-void agree(MPI_Comm comm, const std::string& failure) {
-  int rank = 0, size = 1;
-  MPI_Comm_rank(comm, &rank);
-  MPI_Comm_size(comm, &size);
-  const int mine = failure.empty() ? size : rank;
-  int first = size;
-  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm);
-  if (first == size) return;
-  std::string message = failure;
-  int length = static_cast<int>(message.size());
-  MPI_Bcast(&length, 1, MPI_INT, first, comm);
-  message.resize(static_cast<std::size_t>(length));
-  MPI_Bcast(message.data(), length, MPI_CHAR, first, comm);
-  throw CollectiveError(message);
-}
+using detail::agree;
 
 /// This rank's rows in ascending id order. The ids arrive as a few ascending runs (one per rank
 /// its points came from): the runs are merged, not sorted.
@@ -181,16 +167,28 @@ private:
   int fd_ = -1;
 };
 
+/// One of the list's per-entry arrays (the ids, or a geometry array): its file, its npy dtype
+/// and shape per entry, and this rank's entries (`bytes` each, in the rows' order).
+struct EntryArray {
+  std::string path;
+  const char* dtype;
+  std::vector<std::size_t> shape;  ///< the file's shape, entries first
+  const char* data;
+  std::size_t bytes;
+};
+
 /// This rank's rows in id order as runs contiguous in the file (each a list of pieces of
 /// memory, merged where rows are adjacent in memory too), each run written with pwritev.
-std::string write_indices(const SharedFile& file, const OwnedRows& owned, const std::vector<std::size_t>& by_id,
-                          const std::vector<std::int64_t>& row_offset, std::int64_t data_start) {
+std::string write_entries(const SharedFile& file, const OwnedRows& owned, const EntryArray& array,
+                          const std::vector<std::size_t>& by_id, const std::vector<std::int64_t>& row_offset,
+                          std::int64_t data_start) {
+  const auto item = static_cast<std::int64_t>(array.bytes);
   std::int64_t run_at = -1, run_end = -1;
   std::vector<iovec> run;
   for (std::size_t row : by_id) {
-    const auto entries = owned.rows.row(row);
-    if (entries.empty()) continue;
-    const std::int64_t at = data_start + 4 * row_offset[row];
+    const std::size_t entries = owned.rows.row_size(row);
+    if (entries == 0) continue;
+    const std::int64_t at = data_start + item * row_offset[row];
     if (at != run_end) {
       if (!run.empty()) {
         if (std::string failure = file.write(run_at, run); !failure.empty()) return failure;
@@ -198,9 +196,9 @@ std::string write_indices(const SharedFile& file, const OwnedRows& owned, const 
       run.clear();
       run_at = at;
     }
-    auto* base = const_cast<point_id*>(entries.data());
-    const std::size_t bytes = 4 * entries.size();
-    if (!run.empty() && static_cast<char*>(run.back().iov_base) + run.back().iov_len == reinterpret_cast<char*>(base))
+    auto* base = const_cast<char*>(array.data) + item * owned.rows.offsets()[row];
+    const std::size_t bytes = array.bytes * entries;
+    if (!run.empty() && static_cast<char*>(run.back().iov_base) + run.back().iov_len == base)
       run.back().iov_len += bytes;
     else
       run.push_back({base, bytes});
@@ -215,7 +213,7 @@ std::string write_rows_parallel(MPI_Comm comm, const OwnedRows& owned, std::size
                                 const std::string& prefix) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
-  const std::string offsets_path = prefix + ".offsets.npy", indices_path = prefix + ".indices.npy";
+  const std::string offsets_path = prefix + ".offsets.npy";
   std::string failure;
   if (rank == 0) {
     const auto directory = std::filesystem::path(prefix).parent_path();
@@ -230,44 +228,61 @@ std::string write_rows_parallel(MPI_Comm comm, const OwnedRows& owned, std::size
   const std::int64_t mine = owned.rows.total();
   MPI_Allreduce(&mine, &total, 1, MPI_INT64_T, MPI_SUM, comm);
 
+  // The files of write_neighbor_list: the geometry a cell search carries, the ids, the offsets.
+  const NeighborList& rows = owned.rows;
+  const auto entries = static_cast<std::size_t>(total), dims = static_cast<std::size_t>(rows.geometry_dims());
+  std::vector<EntryArray> arrays;
+  const auto bytes = [](const auto& buffer) { return reinterpret_cast<const char*>(buffer.data()); };
+  if (rows.outputs().shifts) arrays.push_back({prefix + ".shifts.npy", "i4", {entries, dims}, bytes(rows.shifts()), 4 * dims});
+  if (rows.outputs().distances) arrays.push_back({prefix + ".distances.npy", "f8", {entries}, bytes(rows.distances()), 8});
+  if (rows.outputs().vectors) arrays.push_back({prefix + ".vectors.npy", "f8", {entries, dims}, bytes(rows.vectors()), 8 * dims});
+  arrays.push_back({prefix + ".indices.npy", "i4", {entries}, bytes(rows.indices()), 4});
+  std::vector<std::string> paths;
+  for (const EntryArray& array : arrays) paths.push_back(array.path);
+  paths.push_back(offsets_path);
+
   long tag = rank == 0 ? static_cast<long>(::getpid()) : 0;
   MPI_Bcast(&tag, 1, MPI_LONG, 0, comm);
   const std::string suffix = ".tmp." + std::to_string(tag);
-  const std::string indices_header = detail::npy_header("i4", {static_cast<std::size_t>(total)});
-  const std::string offsets_header = detail::npy_header("i8", {global_count + 1});
+  auto header_piece = [](const std::string& header) {
+    return std::vector<iovec>{{const_cast<char*>(header.data()), header.size()}};
+  };
   try {
-    auto header_piece = [](const std::string& header) {
-      return std::vector<iovec>{{const_cast<char*>(header.data()), header.size()}};
-    };
-    SharedFile indices(comm, indices_path, indices_path + suffix,
-                       static_cast<std::int64_t>(indices_header.size()) + 4 * total);
-    std::vector<iovec> header = header_piece(indices_header);
-    failure = rank == 0 ? indices.write(0, header) : "";
-    if (failure.empty())
-      failure = write_indices(indices, owned, by_id, offsets.of_row, static_cast<std::int64_t>(indices_header.size()));
-    indices.close(failure);
+    for (const EntryArray& array : arrays) {
+      const std::string header = detail::npy_header(array.dtype, array.shape);
+      SharedFile file(comm, array.path, array.path + suffix,
+                      static_cast<std::int64_t>(header.size() + array.bytes * entries));
+      std::vector<iovec> piece = header_piece(header);
+      failure = rank == 0 ? file.write(0, piece) : "";
+      if (failure.empty())
+        failure = write_entries(file, owned, array, by_id, offsets.of_row, static_cast<std::int64_t>(header.size()));
+      file.close(failure);
+    }
 
+    const std::string offsets_header = detail::npy_header("i8", {global_count + 1});
     SharedFile list(comm, offsets_path, offsets_path + suffix,
                     static_cast<std::int64_t>(offsets_header.size() + 8 * (global_count + 1)));
-    header = header_piece(offsets_header);
+    std::vector<iovec> header = header_piece(offsets_header);
     failure = rank == 0 ? list.write(0, header) : "";
     std::vector<iovec> block{{const_cast<std::int64_t*>(offsets.block.data()), 8 * offsets.block.size()}};
     if (failure.empty() && !offsets.block.empty())
       failure = list.write(static_cast<std::int64_t>(offsets_header.size() + 8 * offsets.block_first), block);
     list.close(failure);
 
-    // Offsets go last, as in a serial write: once they are in place the indices are complete.
+    // Offsets go last, as in a serial write: once they are in place the entries are complete.
     if (rank == 0)
-      for (const std::string& path : {indices_path, offsets_path})
+      for (const std::string& path : paths)
         if (failure.empty() && std::rename((path + suffix).c_str(), path.c_str()) != 0)
           failure = path + ": cannot finish writing (" + std::strerror(errno) + ")";
     agree(comm, failure);
   } catch (const Error&) {
     if (rank == 0)
-      for (const std::string& path : {indices_path, offsets_path}) std::remove((path + suffix).c_str());
+      for (const std::string& path : paths) std::remove((path + suffix).c_str());
     throw;
   }
-  return offsets_path + "," + indices_path;
+  std::string written = offsets_path + "," + arrays.back().path;  // as write_neighbor_list names them
+  for (std::size_t k = 0; k + 1 < arrays.size(); ++k) written += "," + arrays[k].path;
+  return written;
 }
 
 }  // namespace horizon
