@@ -157,6 +157,36 @@ private:
   std::vector<std::int64_t> before_;
 };
 
+/// The points of `xyz` ordered by the cells of side `side` they lie in (z slowest), as indices.
+std::vector<std::uint32_t> spatial_order(std::span<const double> xyz, int dims, double side) {
+  const std::size_t n = xyz.size() / static_cast<std::size_t>(dims);
+  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  for (int a = 0; a < dims; ++a) {
+    lo[a] = std::numeric_limits<double>::infinity();
+    hi[a] = -lo[a];
+    for (std::size_t k = 0; k < n; ++k) {
+      lo[a] = std::min(lo[a], xyz[k * dims + a]);
+      hi[a] = std::max(hi[a], xyz[k * dims + a]);
+    }
+  }
+  std::uint64_t cells[3] = {1, 1, 1};
+  for (int a = 0; a < dims; ++a)  // at most 2^20 cells a side: the keys fit in 64 bits
+    cells[a] = n == 0 ? 1 : static_cast<std::uint64_t>(std::min((hi[a] - lo[a]) / side, 1048575.0)) + 1;
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    std::uint64_t key = 0;
+    for (int a = dims - 1; a >= 0; --a) {
+      const auto c = static_cast<std::uint64_t>((xyz[k * dims + a] - lo[a]) / (hi[a] - lo[a] + side) * cells[a]);
+      key = key * cells[a] + std::min(c, cells[a] - 1);
+    }
+    keyed[k] = {key, static_cast<std::uint32_t>(k)};
+  }
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<std::uint32_t> order(n);
+  for (std::size_t k = 0; k < n; ++k) order[k] = keyed[k].second;
+  return order;
+}
+
 std::int64_t all_sum(MPI_Comm comm, std::int64_t mine) {
   std::int64_t sum = 0;
   MPI_Allreduce(&mine, &sum, 1, MPI_INT64_T, MPI_SUM, comm);
@@ -233,8 +263,13 @@ OwnedRows search_distributed_cell(MPI_Comm comm, PointView points, const std::ve
   }
   agree(comm, failure);
 
-  // References: the wrapped points, then their images, numbered across ranks from `base`.
+  // References: the wrapped points and their images, numbered across ranks from `base`, in a
+  // spatial order (the candidates of a row are then near each other in what is fetched below).
   const std::size_t local_references = images.xyz.size() / static_cast<std::size_t>(dims);
+  const std::vector<std::uint32_t> order = spatial_order({images.xyz.data(), images.xyz.size()}, dims, problem.largest + margin);
+  std::vector<double> ordered(images.xyz.size());
+  for (std::size_t k = 0; k < local_references; ++k)
+    std::copy_n(images.xyz.data() + std::size_t{order[k]} * dims, dims, ordered.data() + k * dims);
   std::int64_t base = 0;
   const auto mine = static_cast<std::int64_t>(local_references);
   MPI_Exscan(&mine, &base, 1, MPI_INT64_T, MPI_SUM, comm);
@@ -249,7 +284,7 @@ OwnedRows search_distributed_cell(MPI_Comm comm, PointView points, const std::ve
   std::vector<std::int64_t> query_ids(held), reference_ids(local_references);
   for (std::size_t k = 0; k < held; ++k) query_ids[k] = block.first + static_cast<std::int64_t>(k);
   for (std::size_t k = 0; k < local_references; ++k) reference_ids[k] = base + static_cast<std::int64_t>(k);
-  const PointView wrapped(images.xyz.data(), held, dims), all(images.xyz.data(), local_references, dims);
+  const PointView wrapped(images.xyz.data(), held, dims), all(ordered.data(), local_references, dims);
   work += clock.lap();
 
   DistributedOptions inner = options;
@@ -287,7 +322,7 @@ OwnedRows search_distributed_cell(MPI_Comm comm, PointView points, const std::ve
   const std::vector<ReferenceRecord> candidate_points = fetch<8>(
       ranks, named.ids(), numbered,
       [&](std::int64_t number) {
-        const auto local = static_cast<std::size_t>(number - base);
+        const std::size_t local = order[static_cast<std::size_t>(number - base)];
         const bool image = local >= held;
         const auto j = image ? static_cast<std::size_t>(images.image_of[local - held]) : local;
         ReferenceRecord r{0, 0, 0, static_cast<double>(block.first) + static_cast<double>(j),
@@ -301,56 +336,77 @@ OwnedRows search_distributed_cell(MPI_Comm comm, PointView points, const std::ve
       traffic);
   communicate += clock.lap();
 
-  // Each candidate measured on the caller's coordinates, kept or dropped as the oracle does.
+  // Each candidate measured on the caller's coordinates, kept or dropped as the oracle does:
+  // a pass that counts what each row keeps, then one that writes it in place (cheaper than
+  // writing into the candidates' room and moving it together: every row drops i itself).
   const std::size_t count = rows.size();
-  CellEntries spacious(static_cast<std::size_t>(rows.total()), dims, problem.outputs, problem.metric);
+  std::vector<std::size_t> row_point(count);
+  for (std::size_t row = 0; row < count; ++row)
+    row_point[row] = static_cast<std::size_t>(
+        std::lower_bound(rows_by_id.begin(), rows_by_id.end(), candidates.ids[row]) - rows_by_id.begin());
+  // Rows are visited in the spatial order of their wrapped points: neighbouring rows share
+  // most of their candidates' records, which then stay in the cache.
+  std::vector<double> wrapped_rows(count * static_cast<std::size_t>(dims));
+  for (std::size_t row = 0; row < count; ++row) {
+    const QueryRecord& me = row_points[row_point[row]];
+    for (int a = 0; a < dims; ++a) {
+      double moved = 0;
+      for (int k = 0; k < dims; ++k) moved += me[static_cast<std::size_t>(4 + k)] * problem.frame.vectors[k][a];
+      wrapped_rows[row * dims + a] = me[static_cast<std::size_t>(a)] - moved;
+    }
+  }
+  const std::vector<std::uint32_t> visit = spatial_order(wrapped_rows, dims, problem.largest + margin);
+  const double horizon_threshold = metric_threshold(problem.metric, problem.horizon);
   Buffer<std::int64_t> offsets(count + 1);
   offsets[0] = 0;
-  const double horizon_threshold = metric_threshold(problem.metric, problem.horizon);
+  OwnedRows out;
+  out.ids = candidates.ids;
   with_dims_and_metric(dims, problem.metric, [&](auto d, auto m) {
     constexpr int D = decltype(d)::value;
     constexpr Metric M = decltype(m)::value;
+    // The kept entries of a row, in (j, S) order.
+    auto keep = [&](std::size_t row, std::vector<CellEntry>& kept) {
+      const auto i = static_cast<point_id>(candidates.ids[row]);
+      const QueryRecord& me = row_points[row_point[row]];
+      kept.clear();
+      for (const point_id k : rows.row(row)) {
+        const ReferenceRecord& other = candidate_points[named.place(k)];
+        CellEntry e;
+        e.j = static_cast<point_id>(other[3]);
+        for (int a = 0; a < 3; ++a)
+          e.shift[a] = static_cast<std::int32_t>(other[static_cast<std::size_t>(5 + a)]) +
+                       static_cast<std::int32_t>(me[static_cast<std::size_t>(4 + a)]);
+        measure<D, M>(me.data(), other.data(), problem.frame, e);
+        const double threshold = rule ? problem.threshold_of(me[3], other[4]) : horizon_threshold;
+        if (e.accumulated < threshold && problem.keeps(i, e)) kept.push_back(e);
+      }
+      std::sort(kept.begin(), kept.end(), entry_before);
+    };
 #pragma omp parallel num_threads(threads) if (threads > 1 && count > 512)
     {
       std::vector<CellEntry> kept;
 #pragma omp for schedule(dynamic, 256)
-      for (std::int64_t q = 0; q < static_cast<std::int64_t>(count); ++q) {
-        const auto row = static_cast<std::size_t>(q);
-        const auto i = static_cast<point_id>(candidates.ids[row]);
-        const QueryRecord& me = row_points[static_cast<std::size_t>(
-            std::lower_bound(rows_by_id.begin(), rows_by_id.end(), candidates.ids[row]) - rows_by_id.begin())];
-        kept.clear();
-        for (const point_id k : rows.row(row)) {
-          const ReferenceRecord& other = candidate_points[named.place(k)];
-          CellEntry e;
-          e.j = static_cast<point_id>(other[3]);
-          for (int a = 0; a < 3; ++a)
-            e.shift[a] = static_cast<std::int32_t>(other[static_cast<std::size_t>(5 + a)]) +
-                         static_cast<std::int32_t>(me[static_cast<std::size_t>(4 + a)]);
-          measure<D, M>(me.data(), other.data(), problem.frame, e);
-          const double threshold = rule ? problem.threshold_of(me[3], other[4]) : horizon_threshold;
-          if (e.accumulated < threshold && problem.keeps(i, e)) kept.push_back(e);
-        }
-        std::sort(kept.begin(), kept.end(), entry_before);
-        auto at = static_cast<std::size_t>(rows.offsets()[row]);
-        for (const CellEntry& e : kept) spacious.write(at++, e);
+      for (std::int64_t k = 0; k < static_cast<std::int64_t>(count); ++k) {
+        const std::size_t row = visit[static_cast<std::size_t>(k)];
+        keep(row, kept);
         offsets[row + 1] = static_cast<std::int64_t>(kept.size());
       }
     }
+    inclusive_scan(offsets.data() + 1, count, threads);
+    CellEntries entries(static_cast<std::size_t>(offsets[count]), dims, problem.outputs, problem.metric);
+#pragma omp parallel num_threads(threads) if (threads > 1 && count > 512)
+    {
+      std::vector<CellEntry> kept;
+#pragma omp for schedule(dynamic, 256)
+      for (std::int64_t k = 0; k < static_cast<std::int64_t>(count); ++k) {
+        const std::size_t row = visit[static_cast<std::size_t>(k)];
+        keep(row, kept);
+        auto at = static_cast<std::size_t>(offsets[row]);
+        for (const CellEntry& e : kept) entries.write(at++, e);
+      }
+    }
+    out.rows = std::move(entries).list(std::move(offsets), options.search.half);
   });
-  inclusive_scan(offsets.data() + 1, count, threads);
-  OwnedRows out;
-  out.ids = candidates.ids;
-  const auto total = static_cast<std::size_t>(offsets[count]);
-  if (total == static_cast<std::size_t>(rows.total())) {
-    out.rows = std::move(spacious).list(std::move(offsets), options.search.half);
-  } else {
-    CellEntries exact(total, dims, problem.outputs, problem.metric);
-    for (std::size_t row = 0; row < count; ++row)
-      exact.copy(spacious, static_cast<std::size_t>(rows.offsets()[row]), static_cast<std::size_t>(offsets[row]),
-                 static_cast<std::size_t>(offsets[row + 1] - offsets[row]));
-    out.rows = std::move(exact).list(std::move(offsets), options.search.half);
-  }
   work += clock.lap();
 
   if (stats) {
