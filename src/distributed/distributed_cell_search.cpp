@@ -382,29 +382,28 @@ OwnedRows search_distributed_cell(MPI_Comm comm, PointView points, const std::ve
       }
       std::sort(kept.begin(), kept.end(), entry_before);
     };
+    // Every row's kept entries, rows in the visiting order, to `use(row, kept)`.
+    auto each_row = [&](auto&& use) {
 #pragma omp parallel num_threads(threads) if (threads > 1 && count > 512)
-    {
-      std::vector<CellEntry> kept;
+      {
+        std::vector<CellEntry> kept;
 #pragma omp for schedule(dynamic, 256)
-      for (std::int64_t k = 0; k < static_cast<std::int64_t>(count); ++k) {
-        const std::size_t row = visit[static_cast<std::size_t>(k)];
-        keep(row, kept);
-        offsets[row + 1] = static_cast<std::int64_t>(kept.size());
+        for (std::int64_t k = 0; k < static_cast<std::int64_t>(count); ++k) {
+          const std::size_t row = visit[static_cast<std::size_t>(k)];
+          keep(row, kept);
+          use(row, kept);
+        }
       }
-    }
+    };
+    each_row([&](std::size_t row, const std::vector<CellEntry>& kept) {
+      offsets[row + 1] = static_cast<std::int64_t>(kept.size());
+    });
     inclusive_scan(offsets.data() + 1, count, threads);
     CellEntries entries(static_cast<std::size_t>(offsets[count]), dims, problem.outputs, problem.metric);
-#pragma omp parallel num_threads(threads) if (threads > 1 && count > 512)
-    {
-      std::vector<CellEntry> kept;
-#pragma omp for schedule(dynamic, 256)
-      for (std::int64_t k = 0; k < static_cast<std::int64_t>(count); ++k) {
-        const std::size_t row = visit[static_cast<std::size_t>(k)];
-        keep(row, kept);
-        auto at = static_cast<std::size_t>(offsets[row]);
-        for (const CellEntry& e : kept) entries.write(at++, e);
-      }
-    }
+    each_row([&](std::size_t row, const std::vector<CellEntry>& kept) {
+      auto at = static_cast<std::size_t>(offsets[row]);
+      for (const CellEntry& e : kept) entries.write(at++, e);
+    });
     out.rows = std::move(entries).list(std::move(offsets), options.search.half);
   });
   work += clock.lap();
