@@ -51,21 +51,27 @@ struct Calls {
   std::vector<double> us;  // every call after the first, sorted
 };
 
-/// The first call apart, then calls until `seconds` have passed (at least 11).
-Calls time_calls(const std::function<void()>& call, double seconds) {
-  Calls calls;
+/// The first call of each apart, then calls in turn (one of each per round, so that every one
+/// meets the machine's same moments) until `seconds` per call have passed (at least 11 each).
+std::vector<Calls> time_in_turn(const std::vector<std::function<void()>>& calls, double seconds) {
+  std::vector<Calls> timed(calls.size());
   horizon::Stopwatch clock;
-  call();
-  calls.first_us = clock.lap() * 1e6;
+  for (std::size_t k = 0; k < calls.size(); ++k) {
+    clock.lap();
+    calls[k]();
+    timed[k].first_us = clock.lap() * 1e6;
+  }
   const auto start = std::chrono::steady_clock::now();
   const auto spent = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-  while (calls.us.size() < 11 || (spent() < seconds && calls.us.size() < 100000)) {
-    clock.lap();
-    call();
-    calls.us.push_back(clock.lap() * 1e6);
-  }
-  std::sort(calls.us.begin(), calls.us.end());
-  return calls;
+  const double budget = seconds * static_cast<double>(calls.size());
+  for (std::size_t round = 0; round < 11 || (spent() < budget && round < 100000); ++round)
+    for (std::size_t k = 0; k < calls.size(); ++k) {
+      clock.lap();
+      calls[k]();
+      timed[k].us.push_back(clock.lap() * 1e6);
+    }
+  for (Calls& c : timed) std::sort(c.us.begin(), c.us.end());
+  return timed;
 }
 
 double quantile(const std::vector<double>& sorted, double q) {
@@ -91,25 +97,28 @@ int run_latency(const LatencyOptions& options) {
                     quantile(calls.us, 0.5), quantile(calls.us, 0.99), calls.us.back(), calls.first_us, entries);
         std::fflush(stdout);
       };
-      long long entries = 0;
-      const Calls textbook = time_calls([&] { entries = static_cast<long long>(textbook_cell_list(points, 1.0, 1).indices.size()); },
-                                        options.seconds);
-      report("textbook", 1, textbook, entries);
-      // The GPU's host path where one is present: its warmed-up calls, host to host.
+      // The textbook list, then each backend; the GPU's host path where a GPU is present.
       std::vector<horizon::Backend> backends{horizon::Backend::serial, horizon::Backend::openmp};
       if (horizon::backend_available(horizon::Backend::cuda)) backends.push_back(horizon::Backend::cuda);
       backends.push_back(horizon::Backend::automatic);
-      for (horizon::Backend backend : backends) {
-        horizon::SearchOptions search;
-        search.horizon = 1.0;
-        search.backend = backend;
-        horizon::SearchStats stats;
-        const Calls calls = time_calls([&] { entries = horizon::search(points.view(), search, &stats).total(); },
-                                       options.seconds);
-        const std::string name = backend == horizon::Backend::automatic
-                                     ? std::string("auto:") + horizon::backend_name(stats.backend)
-                                     : horizon::backend_name(backend);
-        report(name.c_str(), stats.threads, calls, entries);
+      std::vector<long long> entries(backends.size() + 1);
+      std::vector<horizon::SearchStats> stats(backends.size());
+      std::vector<std::function<void()>> calls{
+          [&] { entries[0] = static_cast<long long>(textbook_cell_list(points, 1.0, 1).indices.size()); }};
+      for (std::size_t k = 0; k < backends.size(); ++k)
+        calls.push_back([&, k] {
+          horizon::SearchOptions search;
+          search.horizon = 1.0;
+          search.backend = backends[k];
+          entries[k + 1] = horizon::search(points.view(), search, &stats[k]).total();
+        });
+      const std::vector<Calls> timed = time_in_turn(calls, options.seconds);
+      report("textbook", 1, timed[0], entries[0]);
+      for (std::size_t k = 0; k < backends.size(); ++k) {
+        const std::string name = backends[k] == horizon::Backend::automatic
+                                     ? std::string("auto:") + horizon::backend_name(stats[k].backend)
+                                     : horizon::backend_name(backends[k]);
+        report(name.c_str(), stats[k].threads, timed[k + 1], entries[k + 1]);
       }
     }
   }
