@@ -130,9 +130,7 @@ HitBits hit_bits_for(const DeviceIndexView& ix, cudaStream_t stream, MemoryMeter
   std::int64_t total = 0;
   HORIZON_CUDA_CHECK(cudaMemcpyAsync(&total, hits.offsets.get() + n, sizeof(total), cudaMemcpyDeviceToHost, stream));
   HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
-  // Asking the device what is free costs a call each search: small bit arrays need not ask.
-  const std::size_t bytes = static_cast<std::size_t>(total) * sizeof(unsigned);
-  if (bytes > (std::size_t{16} << 20) && bytes > available_device_bytes(meter) / 4) hits.offsets.reset();
+  if (static_cast<std::size_t>(total) * sizeof(unsigned) > available_device_bytes(meter) / 4) hits.offsets.reset();
   else hits.bits = DeviceArray<unsigned>(static_cast<std::size_t>(total), meter);
   return hits;
 }
@@ -669,20 +667,9 @@ int cuda_device_count() {
 }
 
 std::string cuda_device_name(int device) {
-  // Asked on every search for its stats: cudaGetDeviceProperties reads every attribute of the
-  // device (a large share of a small search's time), so each name is read once.
-  static std::mutex guard;
-  static std::vector<std::string> names;
-  const std::lock_guard<std::mutex> lock(guard);
-  if (device < 0) return "";
-  if (names.size() <= static_cast<std::size_t>(device)) names.resize(static_cast<std::size_t>(device) + 1);
-  std::string& name = names[static_cast<std::size_t>(device)];
-  if (name.empty()) {
-    cudaDeviceProp properties;
-    if (cudaGetDeviceProperties(&properties, device) != cudaSuccess) return "";
-    name = properties.name;
-  }
-  return name;
+  cudaDeviceProp properties;
+  if (cudaGetDeviceProperties(&properties, device) != cudaSuccess) return "";
+  return properties.name;
 }
 
 }  // namespace horizon
