@@ -266,7 +266,8 @@ OwnedRows search_distributed_cell(MPI_Comm comm, PointView points, const std::ve
   // References: the wrapped points and their images, numbered across ranks from `base`, in a
   // spatial order (the candidates of a row are then near each other in what is fetched below).
   const std::size_t local_references = images.xyz.size() / static_cast<std::size_t>(dims);
-  const std::vector<std::uint32_t> order = spatial_order({images.xyz.data(), images.xyz.size()}, dims, problem.largest + margin);
+  const std::vector<std::uint32_t> order =
+      spatial_order({images.xyz.data(), images.xyz.size()}, dims, problem.largest + margin);
   std::vector<double> ordered(images.xyz.size());
   for (std::size_t k = 0; k < local_references; ++k)
     std::copy_n(images.xyz.data() + std::size_t{order[k]} * dims, dims, ordered.data() + k * dims);

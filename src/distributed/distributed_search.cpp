@@ -500,11 +500,13 @@ NeighborList gather_rows(MPI_Comm comm, const OwnedRows& owned, std::size_t glob
     receive_all(distances.data(), distances.size(), MPI_DOUBLE, 8, r);
     receive_all(vectors.data(), vectors.size(), MPI_DOUBLE, 8, r);
     from.rows = NeighborList({0}, std::move(indices), half);
-    from.rows.set_geometry(outputs, std::move(shifts), std::move(distances), std::move(vectors), static_cast<int>(dims));
+    from.rows.set_geometry(outputs, std::move(shifts), std::move(distances), std::move(vectors),
+                           static_cast<int>(dims));
   }
   Buffer<std::int64_t> offsets(global_count + 1, 0);
   for (const Received& from : ranks)
-    for (std::size_t i = 0; i < from.ids.size(); ++i) offsets[static_cast<std::size_t>(from.ids[i]) + 1] = from.lengths[i];
+    for (std::size_t i = 0; i < from.ids.size(); ++i)
+      offsets[static_cast<std::size_t>(from.ids[i]) + 1] = from.lengths[i];
   std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
   const auto total = static_cast<std::size_t>(offsets.back());
   Buffer<point_id> indices(total);

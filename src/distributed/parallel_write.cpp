@@ -1,8 +1,9 @@
 // Every rank writes the rows it owns straight into PREFIX.indices.npy and PREFIX.offsets.npy
-// (and a cell search's PREFIX.shifts.npy, .distances.npy, .vectors.npy) with positioned writes (the files must be on a filesystem every rank sees), at the offsets a
-// distributed scan of the row lengths gives: no rank holds the whole list. The files are
-// byte-identical to write_neighbor_list of the gathered list and as atomic: written under
-// temporary names, renamed by rank 0 once every rank has written its part. (MPI-IO collective
+// (and a cell search's PREFIX.shifts.npy, .distances.npy, .vectors.npy) with positioned writes
+// (the files must be on a filesystem every rank sees), at the offsets a distributed scan of the
+// row lengths gives: no rank holds the whole list. The files are byte-identical to
+// write_neighbor_list of the gathered list and as atomic: written under temporary names,
+// renamed by rank 0 once every rank has written its part. (MPI-IO collective
 // writes, OMPIO and ROMIO, were tried first: 2-3x slower than these at 4 ranks on a local disk.)
 #include <fcntl.h>
 #include <limits.h>
@@ -233,9 +234,11 @@ std::string write_rows_parallel(MPI_Comm comm, const OwnedRows& owned, std::size
   const auto entries = static_cast<std::size_t>(total), dims = static_cast<std::size_t>(rows.geometry_dims());
   std::vector<EntryArray> arrays;
   const auto bytes = [](const auto& buffer) { return reinterpret_cast<const char*>(buffer.data()); };
-  if (rows.outputs().shifts) arrays.push_back({prefix + ".shifts.npy", "i4", {entries, dims}, bytes(rows.shifts()), 4 * dims});
-  if (rows.outputs().distances) arrays.push_back({prefix + ".distances.npy", "f8", {entries}, bytes(rows.distances()), 8});
-  if (rows.outputs().vectors) arrays.push_back({prefix + ".vectors.npy", "f8", {entries, dims}, bytes(rows.vectors()), 8 * dims});
+  const PairOutputs& outputs = rows.outputs();
+  if (outputs.shifts) arrays.push_back({prefix + ".shifts.npy", "i4", {entries, dims}, bytes(rows.shifts()), 4 * dims});
+  if (outputs.distances) arrays.push_back({prefix + ".distances.npy", "f8", {entries}, bytes(rows.distances()), 8});
+  if (outputs.vectors)
+    arrays.push_back({prefix + ".vectors.npy", "f8", {entries, dims}, bytes(rows.vectors()), 8 * dims});
   arrays.push_back({prefix + ".indices.npy", "i4", {entries}, bytes(rows.indices()), 4});
   std::vector<std::string> paths;
   for (const EntryArray& array : arrays) paths.push_back(array.path);
