@@ -356,6 +356,20 @@ TEST(Distributed, CellsWithPerAtomRadiiAndOutputsOfABox) {
   EXPECT_TRUE(matches_serial(cubes, options)) << "box with outputs";
 }
 
+TEST(Distributed, CellsOnSeveralThreadsPerRankEqualOneNode) {
+  // Enough rows per rank (over 512) for the measuring passes to run on both threads.
+  std::mt19937_64 rng(5803);
+  const Cell cell = random_cell(rng, 3, 0.4);
+  const PointSet points = points_around(cell, 3, 2500, rng);
+  DistributedOptions options;
+  options.search.cell = cell;
+  options.search.horizon = 0.6;
+  options.search.backend = Backend::openmp;
+  options.search.threads = 2;
+  options.search.outputs = {true, true, true};
+  EXPECT_TRUE(matches_serial(points, options)) << "2 threads a rank";
+}
+
 TEST(Distributed, CellGeometryFilesEqualTheSerialWriter) {
   std::mt19937_64 rng(5802);
   const Cell cell = random_cell(rng, 3, 0.3);
