@@ -77,9 +77,8 @@ Block directory(const Ranks& ranks, PointView points, const std::vector<std::int
                 ", not in [0, " + std::to_string(n) + ")";
       break;
     }
-    Packed p{0, 0, 0, static_cast<double>(ids[i]), with_radii ? radii[i] : 0.0};
-    for (int a = 0; a < dims; ++a) p[static_cast<std::size_t>(a)] = points(i, a);
-    outgoing[static_cast<std::size_t>(blocks.owner(ids[i]))].push_back(p);
+    outgoing[static_cast<std::size_t>(blocks.owner(ids[i]))].push_back(
+        pack(points, i, ids[i], with_radii ? radii[i] : 0.0));
   }
   agree(ranks.comm, failure);
   const std::vector<Packed> received = exchange_all(ranks.comm, outgoing, with_radii ? 5 : 4, traffic);

@@ -37,18 +37,13 @@ const char* exchange_name(Exchange exchange) {
 
 namespace {
 
+using detail::pack;
 using detail::Packed;
 
 struct Rank {
   MPI_Comm comm;
   int id, size;
 };
-
-Packed pack(PointView points, std::size_t i, std::int64_t id, double radius) {
-  Packed p{0, 0, 0, static_cast<double>(id), radius};
-  for (int a = 0; a < points.dims(); ++a) p[static_cast<std::size_t>(a)] = points(i, a);
-  return p;
-}
 
 // Whether a packed point is a reference (every point, without a query set): only references
 // travel as ghosts. Periodic images carry -(id + 1).

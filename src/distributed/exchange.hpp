@@ -7,11 +7,20 @@
 #include <cstdint>
 #include <vector>
 
+#include "horizon/points.hpp"
+
 namespace horizon::detail {
 
 /// x, y, z, global id, radius: the radius travels only with per-point radii (`width` 5 below;
 /// else 4 doubles a point go on the wire).
 using Packed = std::array<double, 5>;
+
+/// Point i of `points` packed with its global id and radius.
+inline Packed pack(PointView points, std::size_t i, std::int64_t id, double radius) {
+  Packed p{0, 0, 0, static_cast<double>(id), radius};
+  for (int a = 0; a < points.dims(); ++a) p[static_cast<std::size_t>(a)] = points(i, a);
+  return p;
+}
 
 struct Traffic {
   std::int64_t bytes = 0, messages = 0;
