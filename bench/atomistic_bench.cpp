@@ -3,7 +3,9 @@
 // to 10^6 atoms at 5 and 6 angstrom, the same atoms in a triclinic cell of the same volume, the
 // 10^6-point lattice and cloud of the other benchmarks in a periodic cube, and primitive cells
 // with cutoffs 2-5x the cell; one core and all; ids only, and with distances and
-// vectors (vesin: the same, full list, unsorted). CSV with the ratios.
+// vectors (vesin: the same, full list, unsorted). With a GPU, a row per system for the GPU:
+// horizon's device-resident search (search_device) against vesin's CUDA path, atoms, cell and
+// lists in GPU memory, each call timed to its end on the GPU. CSV with the ratios.
 #include <CLI/CLI.hpp>
 #include <omp.h>
 
@@ -13,11 +15,15 @@
 #include <string>
 #include <vector>
 
+#include "horizon/cuda.hpp"
 #include "horizon/generate.hpp"
 #include "horizon/search.hpp"
 #include "median_seconds.hpp"
 #if defined(HORIZON_WITH_VESIN)
 #include "vesin.h"
+#endif
+#if defined(HORIZON_WITH_CUDA)
+#include <cuda_runtime.h>
 #endif
 
 using namespace horizon;
@@ -108,6 +114,93 @@ std::size_t run_vesin(const System& s, bool geometry, int threads) {
 }
 #endif
 
+#if defined(HORIZON_WITH_CUDA)
+void check(cudaError_t status, const char* what) {
+  if (status == cudaSuccess) return;
+  std::fprintf(stderr, "%s: %s\n", what, cudaGetErrorString(status));
+  std::exit(1);
+}
+
+/// The system's atoms, cell and pbc in GPU memory, as both libraries take them there.
+struct OnGpu {
+  explicit OnGpu(const System& s) {
+    check(cudaMalloc(&xyz, s.xyz.size() * sizeof(double)), "cudaMalloc atoms");
+    check(cudaMemcpy(xyz, s.xyz.data(), s.xyz.size() * sizeof(double), cudaMemcpyHostToDevice), "atoms");
+    check(cudaMalloc(&cell, 9 * sizeof(double)), "cudaMalloc cell");
+    check(cudaMemcpy(cell, s.cell.vectors.data(), 9 * sizeof(double), cudaMemcpyHostToDevice), "cell");
+    const bool periodic[3] = {s.cell.pbc[0], s.cell.pbc[1], s.cell.pbc[2]};
+    check(cudaMalloc(&pbc, sizeof(periodic)), "cudaMalloc pbc");
+    check(cudaMemcpy(pbc, periodic, sizeof(periodic), cudaMemcpyHostToDevice), "pbc");
+  }
+  ~OnGpu() {
+    cudaFree(xyz);
+    cudaFree(cell);
+    cudaFree(pbc);
+  }
+  double* xyz = nullptr;
+  double* cell = nullptr;
+  bool* pbc = nullptr;
+};
+
+/// horizon's device-resident search, its list left on the GPU; the entries.
+std::int64_t run_horizon_gpu(const OnGpu& gpu, std::size_t atoms, const SearchOptions& options) {
+  const DeviceNeighborList list = search_device(gpu.xyz, atoms, 3, options);
+  check(cudaDeviceSynchronize(), "horizon on the GPU");
+  return list.total();
+}
+
+#if defined(HORIZON_WITH_VESIN_CUDA)
+/// vesin's CUDA path with distances and vectors, its list (reused from call to call, as vesin
+/// intends) left on the GPU; the entries, or -1 when vesin refuses the system.
+long long run_vesin_gpu(const OnGpu& gpu, const System& s, VesinNeighborList& list) {
+  VesinOptions options{};
+  options.cutoff = s.cutoff;
+  options.full = true;
+  options.sorted = false;
+  options.algorithm = VesinAutoAlgorithm;
+  options.return_distances = true;
+  options.return_vectors = true;
+  const char* error = nullptr;
+  const int status = vesin_neighbors(reinterpret_cast<const double(*)[3]>(gpu.xyz), s.xyz.size() / 3,
+                                     reinterpret_cast<const double(*)[3]>(gpu.cell), gpu.pbc, {VesinCUDA, 0},
+                                     options, &list, &error);
+  check(cudaDeviceSynchronize(), "vesin on the GPU");
+  if (status != 0) {
+    std::fprintf(stderr, "# vesin (CUDA), %s: %s\n", s.name.c_str(), error ? error : "error");
+    return -1;
+  }
+  return static_cast<long long>(list.length);
+}
+#endif
+
+/// The GPU's row of system s: ids only and d, D on horizon's device-resident search, and vesin's CUDA path.
+void gpu_row(const System& s, int reps) {
+  const OnGpu gpu(s);
+  const std::size_t atoms = s.xyz.size() / 3;
+  SearchOptions ids;
+  ids.horizon = s.cutoff;
+  ids.cell = s.cell;
+  SearchOptions geometry = ids;
+  geometry.outputs = {false, true, true};
+  std::int64_t entries = 0;
+  run_horizon_gpu(gpu, atoms, geometry);  // warm-up: the context, the pool
+  const double ids_s = median_seconds(reps, [&] { entries = run_horizon_gpu(gpu, atoms, ids); });
+  const double geometry_s = median_seconds(reps, [&] { entries = run_horizon_gpu(gpu, atoms, geometry); });
+  long long vesin_entries = 0;
+  double vesin_s = 0;
+#if defined(HORIZON_WITH_VESIN_CUDA)
+  VesinNeighborList list{};
+  if (run_vesin_gpu(gpu, s, list) >= 0)  // warm-up: NVRTC compiles its kernels
+    vesin_s = median_seconds(reps, [&] { vesin_entries = run_vesin_gpu(gpu, s, list); });
+  vesin_free(&list);
+#endif
+  std::printf("%s,%zu,%g,gpu,%lld,%.6f,%.6f,%.2f,%lld,%.6f,%.2f\n", s.name.c_str(), atoms, s.cutoff,
+              static_cast<long long>(entries), ids_s, geometry_s, geometry_s / ids_s, vesin_entries, vesin_s,
+              vesin_s / geometry_s);
+  std::fflush(stdout);
+}
+#endif
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -117,6 +210,8 @@ int main(int argc, char** argv) {
   app.add_option("--reps", reps, "repetitions (the median is reported)");
   app.add_option("--only", only, "only the systems whose name contains this (diamond, triclinic, lattice, cloud, primitive)");
   app.add_option("--largest", largest, "largest supercell k (8 k^3 atoms; 50: 10^6)");
+  bool gpu_only = false;
+  app.add_flag("--gpu-only", gpu_only, "only the GPU rows (with a GPU)");
   CLI11_PARSE(app, argc, argv);
   std::vector<System> systems;
   for (int k : {2, 4, 8, 16, 32, 50})
@@ -140,9 +235,13 @@ int main(int argc, char** argv) {
               with_vesin ? "built from its source (sorted = false)" : "not built (give -DHORIZON_VESIN_SOURCE)");
   std::printf("system,atoms,cutoff,threads,entries,ids_s,geometry_s,geometry_over_ids,vesin_entries,vesin_s,"
               "vesin_over_horizon\n");
-  for (const System& s : systems)
+  for (const System& s : systems) {
+    if (s.name.find(only) == std::string::npos) continue;
+#if defined(HORIZON_WITH_CUDA)
+    if (backend_available(Backend::cuda)) gpu_row(s, reps);
+#endif
     for (int threads : {1, all}) {
-      if (s.name.find(only) == std::string::npos) continue;
+      if (gpu_only) break;
       if (threads == all && all == 1) continue;
       const PointView points(s.xyz.data(), s.xyz.size() / 3, 3);
       SearchOptions ids;
@@ -167,4 +266,5 @@ int main(int argc, char** argv) {
                   with_vesin ? vesin_s / geometry_s : 0.0);
       std::fflush(stdout);
     }
+  }
 }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "datasets.hpp"
+#include "random_cells.hpp"
 #include "same_families.hpp"
 #include "horizon/buffer.hpp"
 #include "horizon/cuda.hpp"
@@ -271,6 +272,110 @@ TEST(Cuda, DeviceResidentPeriodicSearchEqualsBruteForce) {
     }
     cudaFree(device_xyz);
   }
+}
+
+/// `points` copied to GPU memory, freed when it goes.
+struct OnGpu {
+  explicit OnGpu(const PointSet& points) {
+    const std::size_t bytes = points.xyz.size() * sizeof(double);
+    if (bytes == 0) return;
+    EXPECT_EQ(cudaMalloc(&xyz, bytes), cudaSuccess);
+    EXPECT_EQ(cudaMemcpy(xyz, points.xyz.data(), bytes, cudaMemcpyHostToDevice), cudaSuccess);
+  }
+  ~OnGpu() { cudaFree(xyz); }
+  double* xyz = nullptr;
+};
+
+TEST(Cuda, DeviceResidentCellSearchEqualsTheOracle) {
+  REQUIRE_GPU();
+  // Random cells (nearly degenerate ones, 2-D, open axes, horizons of several cells, points up
+  // to two cells out): ids, shifts, distances and vectors equal to the oracle's, every metric,
+  // half lists and self_interaction; a few dozen points (many images each) to a few hundred.
+  std::mt19937_64 rng(5858);
+  const Metric metrics[] = {Metric::euclidean, Metric::euclidean, Metric::manhattan, Metric::chebyshev};
+  for (int problem = 0; problem < 40; ++problem) {
+    const int dims = problem % 3 == 0 ? 2 : 3;
+    const Cell cell = testing::random_cell(rng, dims, problem % 5 == 0 ? 0.05 : 0.3);
+    const std::size_t count = problem % 4 == 3 ? 150 + rng() % 250 : 1 + rng() % 40;
+    const PointSet points = testing::points_around(cell, dims, count, rng);
+    SearchOptions options;
+    options.cell = cell;
+    options.metric = metrics[problem % 4];
+    options.horizon = std::uniform_real_distribution<double>(0.3, count > 100 ? 2.0 : 4.0)(rng);
+    options.half = problem % 2 == 1;
+    options.self_interaction = problem % 7 == 0;
+    options.outputs = {problem % 5 != 1, problem % 5 != 2, problem % 5 != 3};
+    options.cells_per_horizon = 1 + problem % 2;
+    const OnGpu gpu(points);
+    const DeviceNeighborList list = search_device(gpu.xyz, points.size(), dims, options);
+    EXPECT_EQ(list.shifts() != nullptr, options.outputs.shifts);
+    EXPECT_EQ(list.distances() != nullptr, options.outputs.distances);
+    EXPECT_EQ(list.vectors() != nullptr, options.outputs.vectors);
+    EXPECT_TRUE(list.to_host(options.half) == brute_force(points.view(), options))
+        << "problem " << problem << ", " << dims << "-D, " << points.size() << " points, horizon " << options.horizon;
+  }
+}
+
+TEST(Cuda, DeviceResidentCellSearchEqualsTheHostAtScale) {
+  REQUIRE_GPU();
+  // 60,000 points in a triclinic cell open along c, and in an orthorhombic box with outputs:
+  // the GPU's list equals the host's cell search entry for entry, on the caller's stream.
+  PointSet points = random_cloud(60000, 3, 58);
+  Cell cell;
+  cell.vectors = {{{10, 0, 0}, {3, 9, 0}, {-2, 1, 8}}};
+  cell.pbc = {true, true, false};
+  SearchOptions triclinic;
+  triclinic.cell = cell;
+  triclinic.horizon = 0.45;
+  triclinic.outputs = {true, true, true};
+  SearchOptions box;
+  box.box = {10, 10, 10};
+  box.horizon = 0.5;
+  box.half = true;
+  box.outputs = {false, true, true};
+  cudaStream_t stream;
+  ASSERT_EQ(cudaStreamCreate(&stream), cudaSuccess);
+  const OnGpu gpu(points);
+  for (const SearchOptions& options : {triclinic, box}) {
+    const DeviceNeighborList list = search_device(gpu.xyz, points.size(), 3, options, stream);
+    EXPECT_EQ(list.stream(), stream);
+    SearchOptions host = options;
+    host.backend = Backend::serial;
+    EXPECT_TRUE(list.to_host(options.half) == search(points.view(), host)) << (options.half ? "box" : "triclinic");
+  }
+  cudaStreamDestroy(stream);
+}
+
+TEST(Cuda, DeviceResidentCellSearchRefusesBadInputClearly) {
+  REQUIRE_GPU();
+  SearchOptions options;
+  options.cell.vectors = {{{2, 0, 0}, {0, 2, 0}, {0, 0, 2}}};
+  options.cell.pbc = {true, true, true};
+  options.horizon = 1.5;
+  options.outputs = {true, true, true};
+  const DeviceNeighborList none = search_device(nullptr, 0, 3, options);
+  EXPECT_EQ(none.total(), 0);
+  EXPECT_EQ(none.to_host(false).size(), 0u);
+  PointSet points = random_cloud(100, 3, 3);
+  points.xyz[5 * 3 + 1] = std::nan("");
+  const auto message = [&](const PointSet& p, const SearchOptions& o) -> std::string {
+    const OnGpu gpu(p);
+    try {
+      search_device(gpu.xyz, p.size(), 3, o);
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  EXPECT_NE(message(points, options).find("point 5 has a non-finite coordinate"), std::string::npos)
+      << message(points, options);
+  points.xyz[5 * 3 + 1] = 1e40;  // 5e39 cells away
+  EXPECT_NE(message(points, options).find("point 5 lies more than 2^30 cells away"), std::string::npos)
+      << message(points, options);
+  points.xyz[5 * 3 + 1] = 1;
+  SearchOptions singular = options;
+  singular.cell.vectors[2] = {1, 1, 0};  // in the plane of the first two
+  EXPECT_NE(message(points, singular).find("cell"), std::string::npos) << message(points, singular);
 }
 
 TEST(Cuda, RepeatedDeviceSearchesOfMovingPointsStayExact) {

@@ -30,9 +30,10 @@ public:
   std::size_t bytes_needed, bytes_available;
 };
 
-/// A neighbour list in GPU memory (CSR as in NeighborList). Its memory comes from horizon's
-/// pool on the device and goes back to it, ordered on the stream the list was built on, when
-/// the object is destroyed: keep that stream alive as long as the list.
+/// A neighbour list in GPU memory (CSR as in NeighborList), with the per-entry outputs asked
+/// for by SearchOptions::outputs beside it. Its memory comes from horizon's pool on the device
+/// and goes back to it, ordered on the stream the list was built on, when the object is
+/// destroyed: keep that stream alive as long as the list.
 class DeviceNeighborList {
 public:
   DeviceNeighborList() = default;
@@ -40,8 +41,14 @@ public:
   std::int64_t total() const { return total_; }
   const std::int64_t* offsets() const { return offsets_.get(); }  ///< size()+1 entries
   const point_id* indices() const { return indices_.get(); }      ///< total() entries
-  cuda_stream stream() const { return stream_; }                   ///< the stream it was built on
-  /// Copies the list to the host (on the stream it was built on).
+  /// The outputs the list carries (none unless asked for) and the points' dimension.
+  PairOutputs outputs() const { return outputs_; }
+  int dims() const { return dims_; }
+  const std::int32_t* shifts() const { return shifts_.get(); }  ///< dims() per entry, or null
+  const double* distances() const { return distances_.get(); }  ///< one per entry, or null
+  const double* vectors() const { return vectors_.get(); }      ///< dims() per entry, or null
+  cuda_stream stream() const { return stream_; }                 ///< the stream it was built on
+  /// Copies the list, and its outputs, to the host (on the stream it was built on).
   NeighborList to_host(bool half) const;
 
   /// Frees device memory of horizon's pool, ordered on `stream`.
@@ -57,6 +64,10 @@ private:
   friend struct detail::DeviceListAccess;
   std::unique_ptr<std::int64_t, Free> offsets_;
   std::unique_ptr<point_id, Free> indices_;
+  PairOutputs outputs_;
+  int dims_ = 3;
+  std::unique_ptr<std::int32_t, Free> shifts_;
+  std::unique_ptr<double, Free> distances_, vectors_;
   cuda_stream stream_ = nullptr;
   std::size_t points_ = 0;
   std::int64_t total_ = 0;
@@ -64,8 +75,11 @@ private:
 
 /// The neighbour list of `count` points whose AoS coordinates (x y [z], float64) are in GPU
 /// memory at `xyz`, computed on `stream` (of device options.device, which must be current).
-/// A periodic options.box is honoured as by search() (points checked against it on the GPU).
-/// Throws DeviceOutOfMemory, naming the bytes needed, when the list does not fit.
+/// A periodic options.box is honoured as by search() (points checked against it on the GPU);
+/// so are a periodic options.cell of any shape, options.outputs (shifts, distances, vectors on
+/// the GPU beside the list) and options.self_interaction, as search() does them (the guide
+/// *Atomistic systems*). Throws DeviceOutOfMemory, naming the bytes needed, when the list does
+/// not fit.
 DeviceNeighborList search_device(const double* xyz, std::size_t count, int dims,
                                  const SearchOptions& options, cuda_stream stream = nullptr,
                                  SearchStats* stats = nullptr);

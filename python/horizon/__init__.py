@@ -195,14 +195,14 @@ class VerletList:
 
 
 class _CudaArray:
-    """A 1-D array in GPU memory, exported through __cuda_array_interface__ (version 3) so that
+    """An array in GPU memory (1-D, or rows of `width`), exported through __cuda_array_interface__ (version 3) so that
     torch.as_tensor(a, device="cuda") and cupy.asarray(a) take it without a copy; it keeps the
     list that owns the memory alive."""
 
-    def __init__(self, owner, pointer, length, typestr):
+    def __init__(self, owner, pointer, length, typestr, width=1):
         self._owner = owner
         self.__cuda_array_interface__ = {
-            "shape": (length,),
+            "shape": (length,) if width == 1 else (length, width),
             "typestr": typestr,
             "data": (pointer, False),  # PyTorch refuses read-only arrays; writes change the list
             "strides": None,
@@ -216,15 +216,20 @@ class _CudaArray:
 
 class DeviceNeighborList:
     """A neighbour list left in GPU memory (search() on a CUDA array): offsets (int64, N + 1) and
-    indices (int32) export __cuda_array_interface__; to_host() copies it into a NeighborList.
-    The memory goes back to horizon's pool when this object and every array taken from it are
-    gone."""
+    indices (int32) export __cuda_array_interface__, and so do shifts (int32, (total, dims)),
+    distances (float64) and vectors (float64, (total, dims)) when asked for (else None);
+    to_host() copies it into a NeighborList. The memory goes back to horizon's pool when this
+    object and every array taken from it are gone."""
 
-    def __init__(self, owned, half):
+    def __init__(self, owned, half, dims=3):
         self._owned = owned
         self.half = bool(half)
         self.offsets = _CudaArray(owned, owned.offsets_pointer, owned.points + 1, "<i8")
         self.indices = _CudaArray(owned, owned.indices_pointer, owned.total, "<i4")
+        self._dims = dims
+        for name, typestr, width in (("shifts", "<i4", dims), ("distances", "<f8", 1), ("vectors", "<f8", dims)):
+            pointer = getattr(owned, name + "_pointer", 0)
+            setattr(self, name, _CudaArray(owned, pointer, owned.total, typestr, width) if pointer else None)
 
     def __len__(self):
         return self._owned.points
@@ -243,7 +248,12 @@ class DeviceNeighborList:
 
     def to_host(self):
         owned = self._owned.to_host()
-        return NeighborList(owned.offsets, owned.indices, self.half)
+        nl = NeighborList(owned.offsets, owned.indices, self.half)
+        for name in ("shifts", "distances", "vectors"):
+            if getattr(self, name) is not None:
+                values = getattr(owned, name)
+                setattr(nl, name, values.reshape(-1, self._dims) if name != "distances" else values)
+        return nl
 
 
 class DevicePart(DeviceNeighborList):
@@ -264,7 +274,8 @@ class DevicePart(DeviceNeighborList):
                 f"GPU {self.device}>")
 
 
-def _search_on_gpu(points, horizon, metric, half, sort_rows, cells_per_horizon):
+def _search_on_gpu(points, horizon, metric, half, sort_rows, cells_per_horizon, box, cell, pbc, self_interaction,
+                   outputs):
     interface = points.__cuda_array_interface__
     shape, typestr = tuple(interface["shape"]), interface["typestr"]
     if len(shape) != 2 or shape[1] not in (2, 3):
@@ -278,8 +289,9 @@ def _search_on_gpu(points, horizon, metric, half, sort_rows, cells_per_horizon):
                          "e.g. x.contiguous() or cupy.ascontiguousarray(x)")
     stream = interface.get("stream") or 0
     owned = _horizon.search_device(interface["data"][0], shape[0], shape[1], stream, float(horizon), metric,
-                                   bool(half), bool(sort_rows), int(cells_per_horizon))
-    return DeviceNeighborList(owned, half)
+                                   bool(half), bool(sort_rows), int(cells_per_horizon), _periods(box, shape[1]),
+                                   *_cell_and_pbc(cell, pbc, shape[1]), bool(self_interaction), outputs)
+    return DeviceNeighborList(owned, half, shape[1])
 
 
 def _host_points(points, name="points"):
@@ -366,8 +378,8 @@ def search(points, horizon=None, *, backend="auto", metric="l2", half=False, sor
     nl.vectors: S, the distance and D = x_j + S . cell - x_i), computed as each pair is found.
 
     A CUDA array (__cuda_array_interface__: CuPy, PyTorch; float64, C-contiguous) is searched
-    where it lies, on its GPU and stream, and gives a DeviceNeighborList (backend, threads and
-    device do not apply).
+    where it lies, on its GPU and stream, and gives a DeviceNeighborList, its outputs on the GPU
+    too (backend, threads and device do not apply; radii and references need host arrays).
 
     keep_on_device (backend="cuda"): the points cut into one part per entry of devices (or device
     alone), each part's rows left on its GPU: a list of DevicePart, one per GPU, whose rows
@@ -378,10 +390,11 @@ def search(points, horizon=None, *, backend="auto", metric="l2", half=False, sor
     if hasattr(points, "__cuda_array_interface__"):
         if radii is not None:
             raise ValueError("radii= is not supported for GPU arrays yet: pass host arrays (backend='cuda' still runs on the GPU)")
-        if box is not None or references is not None or cell is not None or shifts or distances or vectors:
-            raise ValueError("box=, references=, cell= and the per-entry outputs are not supported for GPU arrays "
-                             "yet: pass host arrays (backend='cuda' still runs on the GPU)")
-        return _search_on_gpu(points, horizon, metric, half, sort_rows, cells_per_horizon)
+        if references is not None:
+            raise ValueError("references= is not supported for GPU arrays yet: pass host arrays (backend='cuda' "
+                             "still runs on the GPU)")
+        return _search_on_gpu(points, horizon, metric, half, sort_rows, cells_per_horizon, box, cell, pbc,
+                              self_interaction, [bool(shifts), bool(distances), bool(vectors)])
     array = _host_points(points)
     if keep_on_device:
         if backend != "cuda":

@@ -180,11 +180,19 @@ OwnedList filter_blocks(py::array_t<std::int64_t> offsets, py::array_t<std::int3
 
 /// points: `count` x `dims` C-contiguous float64 in GPU memory at `pointer`; the list is built on
 /// `stream` (a CUDA stream handle, 0 for the default stream) of the device holding the points.
+/// box, cell, pbc, self_interaction and outputs as search()'s.
 OwnedDeviceList search_device(std::uintptr_t pointer, std::size_t count, int dims, std::uintptr_t stream,
                               double horizon, const std::string& metric, bool half, bool sort_rows,
-                              int cells_per_horizon) {
+                              int cells_per_horizon, const std::array<double, 3>& box,
+                              std::optional<std::array<std::array<double, 3>, 3>> cell,
+                              const std::array<bool, 3>& pbc, bool self_interaction,
+                              const std::array<bool, 3>& outputs) {
   const auto* xyz = reinterpret_cast<const double*>(pointer);
   horizon::SearchOptions options = options_of(horizon, metric, half, sort_rows, cells_per_horizon);
+  options.box = box;
+  if (cell) options.cell = horizon::Cell{*cell, pbc};
+  options.self_interaction = self_interaction;
+  options.outputs = horizon::PairOutputs{outputs[0], outputs[1], outputs[2]};
   py::gil_scoped_release unlocked;
   options.device = count ? horizon::cuda_use_device_of(xyz) : 0;
   auto list = horizon::search_device(xyz, count, dims, options, reinterpret_cast<horizon::cuda_stream>(stream));
@@ -275,6 +283,9 @@ PYBIND11_MODULE(_horizon, m) {
   py::class_<OwnedDeviceList>(m, "OwnedDeviceList")
       .def_property_readonly("offsets_pointer", [](const OwnedDeviceList& l) { return reinterpret_cast<std::uintptr_t>(l.list.offsets()); })
       .def_property_readonly("indices_pointer", [](const OwnedDeviceList& l) { return reinterpret_cast<std::uintptr_t>(l.list.indices()); })
+      .def_property_readonly("shifts_pointer", [](const OwnedDeviceList& l) { return reinterpret_cast<std::uintptr_t>(l.list.shifts()); })
+      .def_property_readonly("distances_pointer", [](const OwnedDeviceList& l) { return reinterpret_cast<std::uintptr_t>(l.list.distances()); })
+      .def_property_readonly("vectors_pointer", [](const OwnedDeviceList& l) { return reinterpret_cast<std::uintptr_t>(l.list.vectors()); })
       .def_property_readonly("points", [](const OwnedDeviceList& l) { return l.list.size(); })
       .def_property_readonly("total", [](const OwnedDeviceList& l) { return l.list.total(); })
       .def_property_readonly("stream", [](const OwnedDeviceList& l) { return l.stream; })
@@ -306,7 +317,8 @@ PYBIND11_MODULE(_horizon, m) {
         py::arg("half"), py::arg("sort_rows"), py::arg("device"), py::arg("devices"), py::arg("cells_per_horizon"),
         py::arg("gpu_max_memory"));
   m.def("search_device", &search_device, py::arg("pointer"), py::arg("count"), py::arg("dims"), py::arg("stream"),
-        py::arg("horizon"), py::arg("metric"), py::arg("half"), py::arg("sort_rows"), py::arg("cells_per_horizon"));
+        py::arg("horizon"), py::arg("metric"), py::arg("half"), py::arg("sort_rows"), py::arg("cells_per_horizon"),
+        py::arg("box"), py::arg("cell"), py::arg("pbc"), py::arg("self_interaction"), py::arg("outputs"));
   m.def("search", &search, py::arg("points"), py::arg("horizon"), py::arg("metric"), py::arg("half"),
         py::arg("sort_rows"), py::arg("backend"), py::arg("threads"), py::arg("device"), py::arg("devices"),
         py::arg("cells_per_horizon"), py::arg("box"), py::arg("references"), py::arg("radii"),

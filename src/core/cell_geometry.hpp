@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "horizon/cell.hpp"
+#include "horizon/metric.hpp"  // HORIZON_HOST_DEVICE
 
 namespace horizon::detail {
 
@@ -22,27 +23,31 @@ struct CellFrame {
   CellFrame(const Cell& cell, int dims);
 
   /// Fractional coordinate along axis a of the point at x.
-  double fractional(const double* x, int a) const {
+  HORIZON_HOST_DEVICE double fractional(const double* x, int a) const {
     double f = 0;
     for (int b = 0; b < dims; ++b) f += x[b] * inverse[b][a];
     return f;
   }
 };
 
+/// g . cell along axis a (of `dims`): how far whole cells g move a point.
+template <class Int>
+HORIZON_HOST_DEVICE inline double cells_along(const Int* g, const CellFrame& cell, int dims, int a) {
+  double moved = 0;
+  for (int k = 0; k < dims; ++k) moved += static_cast<double>(g[k]) * cell.vectors[k][a];
+  return moved;
+}
+
 /// D = x_j + S . cell - x_i for points of D coordinates, S an integer shift per axis.
 template <int D>
-inline void pair_vector(const double* xi, const double* xj, const std::int32_t* shift, const CellFrame& cell,
-                        double* out) {
-  for (int a = 0; a < D; ++a) {
-    double image = 0;
-    for (int b = 0; b < D; ++b) image += shift[b] * cell.vectors[b][a];
-    out[a] = (xj[a] - xi[a]) + image;
-  }
+HORIZON_HOST_DEVICE inline void pair_vector(const double* xi, const double* xj, const std::int32_t* shift,
+                                            const CellFrame& cell, double* out) {
+  for (int a = 0; a < D; ++a) out[a] = (xj[a] - xi[a]) + cells_along(shift, cell, D, a);
 }
 
 /// Whether shift S (D components) is "positive": its first non-zero component is.
 template <int D>
-inline bool positive_shift(const std::int32_t* shift) {
+HORIZON_HOST_DEVICE inline bool positive_shift(const std::int32_t* shift) {
   for (int a = 0; a < D; ++a)
     if (shift[a] != 0) return shift[a] > 0;
   return false;

@@ -24,11 +24,20 @@ struct CellEntry {
 };
 
 /// Order within a row: by j, then by shift, lexicographically.
-inline bool entry_before(const CellEntry& x, const CellEntry& y) {
+HORIZON_HOST_DEVICE inline bool entry_before(const CellEntry& x, const CellEntry& y) {
   if (x.j != y.j) return x.j < y.j;
   for (int a = 0; a < 3; ++a)
     if (x.shift[a] != y.shift[a]) return x.shift[a] < y.shift[a];
   return false;
+}
+
+/// Whether entry (i, j, S) belongs in the list: not i itself at S = 0 unless asked for, and in
+/// a half list only once per pair (i < j, or i = j and S "positive" or zero).
+HORIZON_HOST_DEVICE inline bool keeps_entry(point_id i, const CellEntry& e, bool half, bool self_interaction) {
+  if (e.j != i) return !half || e.j > i;
+  const bool zero = e.shift[0] == 0 && e.shift[1] == 0 && e.shift[2] == 0;
+  if (zero) return self_interaction;
+  return !half || positive_shift<3>(e.shift);
 }
 
 struct CellProblem {
@@ -55,14 +64,8 @@ struct CellProblem {
     const double euclidean = metric == Metric::chebyshev ? largest * std::sqrt(double(dims())) : largest;
     return euclidean / frame.height[a];
   }
-  /// Whether entry (i, j, S) belongs in the list: not i itself at S = 0 unless asked for, and in
-  /// a half list only once per pair (i < j, or i = j and S "positive" or zero).
-  bool keeps(point_id i, const CellEntry& e) const {
-    if (e.j != i) return !half || e.j > i;
-    const bool zero = e.shift[0] == 0 && e.shift[1] == 0 && e.shift[2] == 0;
-    if (zero) return self_interaction;
-    return !half || positive_shift<3>(e.shift);
-  }
+  /// Whether entry (i, j, S) belongs in the list (keeps_entry).
+  bool keeps(point_id i, const CellEntry& e) const { return keeps_entry(i, e, half, self_interaction); }
 };
 
 /// Checks `options` (and `radii`) for the cell path: Error naming the bad entry or combination.
@@ -86,7 +89,7 @@ decltype(auto) with_dims_and_metric(int dims, Metric metric, F&& f) {
 
 /// D and its accumulated distance for entry (i, j, S) of D-dimensional points.
 template <int D, Metric M>
-inline void measure(const double* xi, const double* xj, const CellFrame& frame, CellEntry& e) {
+HORIZON_HOST_DEVICE inline void measure(const double* xi, const double* xj, const CellFrame& frame, CellEntry& e) {
   pair_vector<D>(xi, xj, e.shift, frame, e.vector);
   e.accumulated = metric_accumulate<M>(e.vector[0], e.vector[1], D == 3 ? e.vector[2] : 0.0);
 }

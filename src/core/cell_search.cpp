@@ -10,6 +10,7 @@
 
 #include "cell_images.hpp"
 #include "cell_problem.hpp"
+#include "cell_walk.hpp"
 #include "horizon/error.hpp"
 #include "horizon/grid.hpp"
 #include "horizon/stopwatch.hpp"
@@ -78,80 +79,6 @@ NeighborList all_candidates(PointView local, std::size_t queries, double horizon
   return NeighborList(std::move(offsets), Buffer<point_id>(indices.begin(), indices.end()), false);
 }
 
-/// Walks row i of the engine's list in (j, S) order: the wrapped points' part (ascending j)
-/// and the images' part (ascending (j, G), so ascending (j, S)) merged, each candidate measured
-/// on the caller's coordinates and kept or dropped as the oracle does; `emit` gets each kept one.
-template <int D, Metric M, class Emit>
-void walk_row(std::span<const point_id> row, point_id i, const Images& images, const CellProblem& problem,
-              std::size_t points, Emit&& emit) {
-  const std::size_t split = static_cast<std::size_t>(
-      std::lower_bound(row.begin(), row.end(), static_cast<point_id>(points)) - row.begin());
-  const double* xi = images.original.data() + static_cast<std::size_t>(i) * D;
-  const std::int32_t* wi = images.wraps.data() + static_cast<std::size_t>(i) * 3;
-  const CellFrame& frame = problem.frame;
-  // Candidate k of a part: S = G - w_j + w_i (x = wrapped + w . cell), G = 0 for the wrapped points.
-  auto candidate = [&](point_id k, CellEntry& e) {
-    const bool image = static_cast<std::size_t>(k) >= points;
-    const std::size_t at = image ? static_cast<std::size_t>(k) - points : 0;
-    e.j = image ? images.image_of[at] : k;
-    const std::int32_t* wj = images.wraps.data() + static_cast<std::size_t>(e.j) * 3;
-    for (int a = 0; a < 3; ++a) e.shift[a] = (image ? images.image_shift[at * 3 + a] : 0) - wj[a] + wi[a];
-    measure<D, M>(xi, images.original.data() + static_cast<std::size_t>(e.j) * D, frame, e);
-    return e.accumulated < problem.threshold(static_cast<std::size_t>(i), static_cast<std::size_t>(e.j)) &&
-           problem.keeps(i, e);
-  };
-  // The next kept candidate of [at, end) (false: none); i itself at S = 0 joins the first part.
-  bool self_pending = problem.self_interaction;
-  // Candidates are points in the caller's order, scattered in memory when that order is not
-  // spatial: their coordinates and cells are asked for a few candidates ahead.
-  constexpr std::size_t ahead = 8;
-  auto prefetch_point = [&](point_id j) {
-    __builtin_prefetch(images.original.data() + static_cast<std::size_t>(j) * D);
-    __builtin_prefetch(images.wraps.data() + static_cast<std::size_t>(j) * 3);
-  };
-  auto next_home = [&](std::size_t& at, CellEntry& e) {
-    for (; at < split; ++at) {
-      if (at + ahead < split) prefetch_point(row[at + ahead]);
-      if (self_pending && row[at] > i) break;
-      if (candidate(row[at], e)) {
-        ++at;
-        return true;
-      }
-    }
-    if (self_pending) {
-      self_pending = false;
-      e = CellEntry{};
-      e.j = i;
-      measure<D, M>(xi, xi, frame, e);
-      return true;
-    }
-    return false;
-  };
-  auto next_image = [&](std::size_t& at, CellEntry& e) {
-    for (; at < row.size(); ++at) {
-      if (at + ahead < row.size())
-        prefetch_point(images.image_of[static_cast<std::size_t>(row[at + ahead]) - points]);
-      if (candidate(row[at], e)) {
-        ++at;
-        return true;
-      }
-    }
-    return false;
-  };
-  std::size_t home_at = 0, image_at = split;
-  CellEntry home, image;
-  bool has_home = next_home(home_at, home), has_image = next_image(image_at, image);
-  while (has_home || has_image) {
-    if (has_home && (!has_image || entry_before(home, image))) {
-      emit(home);
-      has_home = next_home(home_at, home);
-    } else {
-      emit(image);
-      has_image = next_image(image_at, image);
-    }
-  }
-}
-
 /// The list from the candidates, each row walked once: written where the candidates' row was
 /// (with room for i itself under self_interaction), then moved together unless every candidate
 /// was kept, as in a full list almost always (the candidates differ only by rounding).
@@ -171,12 +98,18 @@ NeighborList map_rows(const NeighborList& candidates, const Images& images, cons
   CellEntries spacious(capacity, D, problem.outputs, problem.metric);
   Buffer<std::int64_t> offsets(points + 1);
   offsets[0] = 0;
+  const ImageTables tables{images.original.data(), images.wraps.data(), images.image_of.data(),
+                           images.image_shift.data(), points};
+  const auto threshold = [&](point_id i, point_id j) {
+    return problem.threshold(static_cast<std::size_t>(i), static_cast<std::size_t>(j));
+  };
 #pragma omp parallel for schedule(dynamic, 512) num_threads(threads) if (threads > 1 && rows > 512)
   for (std::int64_t i = 0; i < rows; ++i) {
     const auto first = static_cast<std::size_t>(room[i] + self * i);
     std::size_t at = first;
-    walk_row<D, M>(candidates.row(static_cast<std::size_t>(i)), static_cast<point_id>(i), images, problem, points,
-                   [&](const CellEntry& e) { spacious.write(at++, e); });
+    const auto row = candidates.row(static_cast<std::size_t>(i));
+    walk_row<D, M>(row.data(), row.size(), static_cast<point_id>(i), tables, problem.frame, threshold, problem.half,
+                   problem.self_interaction, [&](const CellEntry& e) { spacious.write(at++, e); });
     offsets[i + 1] = static_cast<std::int64_t>(at - first);
   }
   inclusive_scan(offsets.data() + 1, points, threads);

@@ -66,6 +66,24 @@ def test_clear_errors_for_gpu_arrays(library):
         horizon.search(wide[:, :3], 0.5)
 
 
+@pytest.mark.parametrize("library", libraries)
+@pytest.mark.parametrize("half", [False, True])
+def test_a_cell_on_the_gpu_gives_the_hosts_entries_and_geometry(library, half):
+    rng = np.random.default_rng(58)
+    cell = np.array([[6.0, 0, 0], [2.0, 5.5, 0], [-1.0, 1.5, 7.0]])
+    points = rng.uniform(-0.5, 1.5, (3000, 3)) @ cell  # atoms inside and outside the cell
+    kwargs = dict(cell=cell, pbc=[True, True, False], half=half, shifts=True, distances=True, vectors=True)
+    reference = horizon.search(points, 2.5, backend="serial", **kwargs)
+    nl = horizon.search(to_gpu(library, points), 2.5, **kwargs)
+    np.testing.assert_array_equal(to_numpy(library, nl.indices), reference.indices)
+    np.testing.assert_array_equal(to_numpy(library, nl.shifts), reference.shifts)
+    np.testing.assert_array_equal(to_numpy(library, nl.distances), reference.distances)
+    np.testing.assert_array_equal(to_numpy(library, nl.vectors), reference.vectors)
+    host = nl.to_host()
+    np.testing.assert_array_equal(host.vectors, reference.vectors)
+    assert horizon.search(to_gpu(library, points), 2.5, cell=cell).shifts is None
+
+
 @pytest.mark.skipif("torch" not in libraries, reason="needs PyTorch")
 def test_a_solver_loop_on_the_gpu():
     points = torch.from_numpy(horizon.random_cloud(100000, seed=3)).cuda()

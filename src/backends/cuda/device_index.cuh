@@ -12,19 +12,11 @@
 #include "device_memory.hpp"
 #include "horizon/grid.hpp"
 #include "horizon/search.hpp"
+#include "device_list_access.hpp"
 #include "launch.cuh"
 
 namespace horizon::detail {
 namespace {
-
-/// How a GPU part names its points (device memory): names[i] is local point i's global id, all
-/// below `bound` and ascending with i (so rows stay sorted and half lists keep j > i); only the
-/// points with own[i] != 0 get families.
-struct PartNaming {
-  const point_id* names;
-  std::int64_t bound;
-  const std::uint8_t* own;
-};
 
 struct Box {
   double lo[3], hi[3];

@@ -129,4 +129,14 @@ private:
   MemoryMeter* meter_;
 };
 
+/// GPU memory a search can still take: free on the device plus what horizon's pool holds
+/// unused, and no more than its limit (SearchOptions::gpu_max_memory) leaves.
+inline std::size_t available_device_bytes(const MemoryMeter& meter) {
+  std::size_t free = 0, total = 0;
+  HORIZON_CUDA_CHECK(cudaMemGetInfo(&free, &total));
+  const std::size_t available = free + pool_spare_bytes(meter.pool);
+  if (meter.limit == 0) return available;
+  return std::min(available, meter.limit > meter.now ? meter.limit - meter.now : 0);
+}
+
 }  // namespace horizon::detail

@@ -1,5 +1,5 @@
 #pragma once
-// Included by search.cu only (one translation unit): definitions in an anonymous namespace.
+// Included by the CUDA translation units: definitions in an anonymous namespace.
 // Launch shape and error check shared by the CUDA backend's kernels.
 #include <cuda_runtime.h>
 

@@ -21,10 +21,12 @@
 #include <type_traits>
 #include <vector>
 
+#include "../../core/cell_search.hpp"
 #include "../../core/memory_check.hpp"
 #include "../backends.hpp"
 #include "cell_kernel.cuh"
 #include "device_index.cuh"
+#include "device_list_access.hpp"
 #include "device_memory.hpp"
 #include "host_copy.cuh"
 #include "launch.cuh"
@@ -38,23 +40,6 @@
 
 namespace horizon {
 namespace detail {
-
-/// What builds and edits DeviceNeighborLists besides search_device: the search of a GPU part
-/// (its points named by their global ids, rows for its own points only; device_part.cuh).
-struct DeviceListAccess {
-  static DeviceNeighborList search(const double* xyz, std::size_t count, int dims, const SearchOptions& options,
-                                   cuda_stream stream, SearchStats* stats, const PartNaming* naming);
-  static point_id* release_indices(DeviceNeighborList& list) { return list.indices_.release(); }
-  static void set(DeviceNeighborList& list, std::int64_t* offsets, point_id* indices, std::size_t rows,
-                  std::int64_t total, cuda_stream stream) {
-    const DeviceNeighborList::Free free{stream};
-    list.offsets_ = {offsets, free};
-    list.indices_ = {indices, free};
-    list.points_ = rows;
-    list.total_ = total;
-    list.stream_ = stream;
-  }
-};
 
 namespace {
 
@@ -93,16 +78,6 @@ PassArgs pass_args(const SearchOptions& o, std::int64_t n, std::int64_t name_bou
   a.sort_bits = id_bits(name_bound);
   a.position_last = n;
   return a;
-}
-
-/// GPU memory a search can still take: free on the device plus what horizon's pool holds
-/// unused, and no more than its limit (SearchOptions::gpu_max_memory) leaves.
-std::size_t available_device_bytes(const MemoryMeter& meter) {
-  std::size_t free = 0, total = 0;
-  HORIZON_CUDA_CHECK(cudaMemGetInfo(&free, &total));
-  const std::size_t available = free + pool_spare_bytes(meter.pool);
-  if (meter.limit == 0) return available;
-  return std::min(available, meter.limit > meter.now ? meter.limit - meter.now : 0);
 }
 
 /// The count pass's hit bits (hit_bits.cuh): point p's words from bits + offsets[p], p its sorted position.
@@ -568,7 +543,20 @@ NeighborList DeviceNeighborList::to_host(bool half) const {
   detail::PinnedBlocks::get().prepare(indices.data());
   if (offsets_) detail::copy_to_host(offsets.data(), offsets_.get(), offsets.size() * sizeof(std::int64_t), stream_);
   if (total_) detail::copy_to_host(indices.data(), indices_.get(), indices.size() * sizeof(point_id), stream_);
-  return NeighborList(std::move(offsets), std::move(indices), half);
+  NeighborList list(std::move(offsets), std::move(indices), half);
+  if (!outputs_.any()) return list;
+  const auto entries = static_cast<std::size_t>(total_), d = static_cast<std::size_t>(dims_);
+  Buffer<std::int32_t> shifts(outputs_.shifts ? entries * d : 0);
+  Buffer<double> distances(outputs_.distances ? entries : 0), vectors(outputs_.vectors ? entries * d : 0);
+  for (void* host : {static_cast<void*>(shifts.data()), static_cast<void*>(distances.data()),
+                     static_cast<void*>(vectors.data())})
+    if (host) detail::PinnedBlocks::get().prepare(host);
+  if (!shifts.empty()) detail::copy_to_host(shifts.data(), shifts_.get(), shifts.size() * sizeof(std::int32_t), stream_);
+  if (!distances.empty())
+    detail::copy_to_host(distances.data(), distances_.get(), distances.size() * sizeof(double), stream_);
+  if (!vectors.empty()) detail::copy_to_host(vectors.data(), vectors_.get(), vectors.size() * sizeof(double), stream_);
+  list.set_geometry(outputs_, std::move(shifts), std::move(distances), std::move(vectors), dims_);
+  return list;
 }
 
 DeviceNeighborList search_device(const double* xyz, std::size_t count, int dims,
@@ -581,6 +569,7 @@ DeviceNeighborList detail::DeviceListAccess::search(const double* xyz, std::size
                                                     SearchStats* stats, const PartNaming* naming) {
   validate_horizon(options.horizon, options.cells_per_horizon);
   if (dims != 2 && dims != 3) throw Error("points must have 2 or 3 coordinates, not " + std::to_string(dims));
+  if (detail::needs_cell_search(options)) return search_cell(xyz, count, dims, options, stream, stats);
   DeviceNeighborList list;
   list.points_ = count;
   list.stream_ = stream;
