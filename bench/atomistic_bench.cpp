@@ -87,8 +87,8 @@ System cube(bool cloud, double m) {
 }
 
 #if defined(HORIZON_WITH_VESIN)
-/// vesin's full list with distances and vectors (shifts too when asked), `threads` threads.
-std::size_t run_vesin(const System& s, bool geometry, int threads) {
+/// vesin's options for a full, unsorted list, with shifts, distances and vectors when asked.
+VesinOptions vesin_options(const System& s, bool geometry, int threads) {
   VesinOptions options{};
   options.cutoff = s.cutoff;
   options.full = true;
@@ -98,6 +98,12 @@ std::size_t run_vesin(const System& s, bool geometry, int threads) {
   options.return_shifts = geometry;
   options.return_distances = geometry;
   options.return_vectors = geometry;
+  return options;
+}
+
+/// vesin's full list with shifts, distances and vectors when asked, `threads` threads.
+std::size_t run_vesin(const System& s, bool geometry, int threads) {
+  const VesinOptions options = vesin_options(s, geometry, threads);
   VesinNeighborList list;
   const char* error = nullptr;
   const bool periodic[3] = {s.cell.pbc[0], s.cell.pbc[1], s.cell.pbc[2]};
@@ -150,16 +156,10 @@ std::int64_t run_horizon_gpu(const OnGpu& gpu, std::size_t atoms, const SearchOp
 }
 
 #if defined(HORIZON_WITH_VESIN_CUDA)
-/// vesin's CUDA path with distances and vectors, its list (reused from call to call, as vesin
-/// intends) left on the GPU; the entries, or -1 when vesin refuses the system.
+/// vesin's CUDA path with shifts, distances and vectors, its list (reused from call to call, as
+/// vesin intends) left on the GPU; the entries, or -1 when vesin refuses the system.
 long long run_vesin_gpu(const OnGpu& gpu, const System& s, VesinNeighborList& list) {
-  VesinOptions options{};
-  options.cutoff = s.cutoff;
-  options.full = true;
-  options.sorted = false;
-  options.algorithm = VesinAutoAlgorithm;
-  options.return_distances = true;
-  options.return_vectors = true;
+  const VesinOptions options = vesin_options(s, true, 1);
   const char* error = nullptr;
   const int status = vesin_neighbors(reinterpret_cast<const double(*)[3]>(gpu.xyz), s.xyz.size() / 3,
                                      reinterpret_cast<const double(*)[3]>(gpu.cell), gpu.pbc, {VesinCUDA, 0},
@@ -173,7 +173,7 @@ long long run_vesin_gpu(const OnGpu& gpu, const System& s, VesinNeighborList& li
 }
 #endif
 
-/// The GPU's row of system s: ids only and d, D on horizon's device-resident search, and vesin's CUDA path.
+/// The GPU's row of system s: ids only and S, d, D on horizon's device-resident search, and vesin's CUDA path.
 void gpu_row(const System& s, int reps) {
   const OnGpu gpu(s);
   const std::size_t atoms = s.xyz.size() / 3;
@@ -181,7 +181,7 @@ void gpu_row(const System& s, int reps) {
   ids.horizon = s.cutoff;
   ids.cell = s.cell;
   SearchOptions geometry = ids;
-  geometry.outputs = {false, true, true};
+  geometry.outputs = {true, true, true};
   std::int64_t entries = 0;
   run_horizon_gpu(gpu, atoms, geometry);  // warm-up: the context, the pool
   const double ids_s = median_seconds(reps, [&] { entries = run_horizon_gpu(gpu, atoms, ids); });
