@@ -3,7 +3,11 @@
 // image counts; the orthorhombic box's answer; and the errors of bad cells.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <numeric>
+#include <tuple>
 #include <random>
 #include <string>
 
@@ -120,6 +124,86 @@ TEST(CellSearch, PerAtomRadiiEqualTheOracle) {
       options.backend = backend;
       const NeighborList got = search_with_radii(points.view(), radii, rule, options);
       EXPECT_TRUE(got == expected) << first_difference(got, expected) << "\nproblem " << problem;
+    }
+  }
+}
+
+/// Row i of a list with all three outputs as (j, S, d, D) tuples, sorted; j and i renamed by
+/// `name` (identity when empty).
+using Entry = std::tuple<point_id, std::array<std::int32_t, 3>, double, std::array<double, 3>>;
+std::vector<Entry> entries_of(const NeighborList& list, std::size_t i, const std::vector<point_id>& name = {}) {
+  std::vector<Entry> row;
+  for (auto e = list.offsets()[i]; e < list.offsets()[i + 1]; ++e) {
+    const auto at = static_cast<std::size_t>(e);
+    const point_id j = list.indices()[at];
+    row.emplace_back(name.empty() ? j : name[static_cast<std::size_t>(j)],
+                     std::array<std::int32_t, 3>{list.shifts()[3 * at], list.shifts()[3 * at + 1], list.shifts()[3 * at + 2]},
+                     list.distances()[at],
+                     std::array<double, 3>{list.vectors()[3 * at], list.vectors()[3 * at + 1], list.vectors()[3 * at + 2]});
+  }
+  std::sort(row.begin(), row.end());
+  return row;
+}
+
+TEST(CellSearch, PointsInNoSpatialOrderGiveTheListOfTheSamePointsInOrder) {
+  // 40,000 atoms in a triclinic cell, open along c: in cell order (searched as they are) and
+  // shuffled (renumbered by cell inside the search, rows sorted again or not). The shuffled
+  // list is the ordered one renamed, entry for entry with the same bits, on every CPU backend;
+  // its half list keeps what the half rule keeps of its full list, by the caller's ids.
+  std::mt19937_64 rng(59);
+  Cell cell;
+  cell.vectors = {{{30, 0, 0}, {8, 28, 0}, {-4, 3, 25}}};
+  cell.pbc = {true, true, false};
+  PointSet ordered(3, {});
+  for (int i = 0; i < 40000; ++i) {
+    const double f[3] = {(i % 40 + 0.5 * std::uniform_real_distribution<double>(0, 1)(rng)) / 40,
+                         (i / 40 % 40 + 0.5 * std::uniform_real_distribution<double>(0, 1)(rng)) / 40,
+                         (i / 1600 + 0.5 * std::uniform_real_distribution<double>(0, 1)(rng)) / 25};
+    for (int a = 0; a < 3; ++a) ordered.xyz.push_back(f[0] * cell.vectors[0][a] + f[1] * cell.vectors[1][a] + f[2] * cell.vectors[2][a]);
+  }
+  std::vector<point_id> shuffle(ordered.size());  // shuffled point k is ordered point shuffle[k]
+  std::iota(shuffle.begin(), shuffle.end(), 0);
+  std::shuffle(shuffle.begin(), shuffle.end(), rng);
+  std::vector<point_id> where(ordered.size());  // ordered point j is shuffled point where[j]
+  PointSet shuffled(3, {});
+  for (std::size_t k = 0; k < shuffle.size(); ++k) {
+    where[static_cast<std::size_t>(shuffle[k])] = static_cast<point_id>(k);
+    for (int a = 0; a < 3; ++a) shuffled.xyz.push_back(ordered.xyz[3 * static_cast<std::size_t>(shuffle[k]) + a]);
+  }
+  SearchOptions options;
+  options.cell = cell;
+  options.horizon = 2.2;
+  options.outputs = {true, true, true};
+  options.self_interaction = true;
+  const NeighborList expected = search(ordered.view(), options);
+  for (Backend backend : {Backend::serial, Backend::openmp}) {
+    for (bool sorted : {true, false}) {
+      options.backend = backend;
+      options.sort_rows = sorted;
+      options.half = false;
+      const NeighborList full = search(shuffled.view(), options);
+      ASSERT_EQ(full.total(), expected.total());
+      for (std::size_t k = 0; k < shuffled.size(); k += 7)
+        ASSERT_EQ(entries_of(full, k), entries_of(expected, static_cast<std::size_t>(shuffle[k]), where))
+            << "row " << k << " on " << backend_name(backend) << (sorted ? ", sorted" : ", unsorted");
+      if (sorted) {
+        for (std::size_t k = 0; k < shuffled.size(); ++k) {
+          const auto row = full.row(k);
+          ASSERT_TRUE(std::is_sorted(row.begin(), row.end())) << "row " << k;
+        }
+      }
+      options.half = true;
+      const NeighborList half = search(shuffled.view(), options);
+      for (std::size_t k = 0; k < shuffled.size(); k += 7) {
+        std::vector<Entry> kept;
+        for (const Entry& e : entries_of(full, k)) {
+          const point_id j = std::get<0>(e);
+          const auto& shift = std::get<1>(e);
+          const bool positive = shift[0] > 0 || (shift[0] == 0 && (shift[1] > 0 || (shift[1] == 0 && shift[2] >= 0)));
+          if (j > static_cast<point_id>(k) || (j == static_cast<point_id>(k) && positive)) kept.push_back(e);
+        }
+        ASSERT_EQ(entries_of(half, k), kept) << "half row " << k << " on " << backend_name(backend);
+      }
     }
   }
 }

@@ -33,11 +33,12 @@ HORIZON_HOST_DEVICE inline bool entry_before(const CellEntry& x, const CellEntry
 
 /// Whether entry (i, j, S) belongs in the list: not i itself at S = 0 unless asked for, and in
 /// a half list only once per pair (i < j, or i = j and S "positive" or zero).
-HORIZON_HOST_DEVICE inline bool keeps_entry(point_id i, const CellEntry& e, bool half, bool self_interaction) {
-  if (e.j != i) return !half || e.j > i;
-  const bool zero = e.shift[0] == 0 && e.shift[1] == 0 && e.shift[2] == 0;
+HORIZON_HOST_DEVICE inline bool keeps_entry(point_id i, point_id j, const std::int32_t* shift, bool half,
+                                             bool self_interaction) {
+  if (j != i) return !half || j > i;
+  const bool zero = shift[0] == 0 && shift[1] == 0 && shift[2] == 0;
   if (zero) return self_interaction;
-  return !half || positive_shift<3>(e.shift);
+  return !half || positive_shift<3>(shift);
 }
 
 struct CellProblem {
@@ -65,7 +66,7 @@ struct CellProblem {
     return euclidean / frame.height[a];
   }
   /// Whether entry (i, j, S) belongs in the list (keeps_entry).
-  bool keeps(point_id i, const CellEntry& e) const { return keeps_entry(i, e, half, self_interaction); }
+  bool keeps(point_id i, const CellEntry& e) const { return keeps_entry(i, e.j, e.shift, half, self_interaction); }
 };
 
 /// Checks `options` (and `radii`) for the cell path: Error naming the bad entry or combination.

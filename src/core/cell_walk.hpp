@@ -18,12 +18,18 @@ struct ImageTables {
   const point_id* image_of = nullptr;       ///< per image: its point
   const std::int32_t* image_shift = nullptr;  ///< per image: its shift G (3 each)
   std::size_t points = 0;
+  /// The caller's id of each point when the points were renumbered (null: their own), which
+  /// half lists decide by.
+  const point_id* names = nullptr;
+
+  HORIZON_HOST_DEVICE point_id name(point_id k) const { return names ? names[k] : k; }
 };
 
 /// Walks row i of the engine's list (`length` candidates, ascending) in (j, S) order: the
 /// wrapped points' part (ascending j) and the images' part (ascending (j, G), so ascending
 /// (j, S)) merged, each candidate measured on the caller's coordinates and kept when its
-/// accumulated distance is below threshold(i, j) and keeps_entry() agrees; `emit` gets each.
+/// accumulated distance is below threshold(i, j) and keeps_entry() agrees on the caller's ids;
+/// `emit` gets each, j numbered as the points are in `t`.
 template <int D, Metric M, class Threshold, class Emit>
 HORIZON_HOST_DEVICE void walk_row(const point_id* row, std::size_t length, point_id i, const ImageTables& t,
                                   const CellFrame& frame, const Threshold& threshold, bool half,
@@ -44,7 +50,7 @@ HORIZON_HOST_DEVICE void walk_row(const point_id* row, std::size_t length, point
     const std::int32_t* wj = t.wraps + static_cast<std::size_t>(e.j) * 3;
     for (int a = 0; a < 3; ++a) e.shift[a] = (image ? t.image_shift[at * 3 + a] : 0) - wj[a] + wi[a];
     measure<D, M>(xi, t.original + static_cast<std::size_t>(e.j) * D, frame, e);
-    return e.accumulated < threshold(i, e.j) && keeps_entry(i, e, half, self_interaction);
+    return e.accumulated < threshold(i, e.j) && keeps_entry(t.name(i), t.name(e.j), e.shift, half, self_interaction);
   };
   // Candidates are points in the caller's order, scattered in memory when that order is not
   // spatial: on the CPU their coordinates and wraps are asked for a few candidates ahead.
