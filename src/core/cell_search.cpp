@@ -130,7 +130,7 @@ NeighborList map_rows(const NeighborList& candidates, const ImageTables& tables,
       const auto row = candidates.row(static_cast<std::size_t>(p));
       kept.clear();
       walk_row<D, M>(row.data(), row.size(), static_cast<point_id>(p), tables, problem.frame, threshold,
-                     problem.half, problem.self_interaction, [&](CellEntry e) {
+                     problem.half, problem.self_interaction, [&](CellEntry e, std::int64_t) {
                        e.j = tables.name(e.j);
                        if (sort_again) kept.push_back(e);
                        else spacious.write(at++, e);

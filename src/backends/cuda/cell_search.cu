@@ -63,7 +63,29 @@ __global__ void place_images(const double* xyz, std::int64_t n, CellFrame frame,
                local + (n + first[i]) * dims, image_of + first[i], image_shift + first[i] * 3);
 }
 
-/// Where the write pass puts the entries (null: not asked for).
+/// Row i's candidates walked (walk_row): counted into offsets[i + 1] when !Pick; else each kept
+/// one picked, from offsets[i] on, as (i << 32 | its position in the row, ~0 for i itself).
+/// A thread per row writes scattered; the entries' outputs are written by write_entries.
+template <int D, Metric M, bool Pick>
+__global__ void walk_rows(const std::int64_t* candidate_offsets, const point_id* candidates, std::int64_t n,
+                          ImageTables tables, CellFrame frame, double threshold, bool half, bool self_interaction,
+                          std::int64_t* offsets, std::uint64_t* picked) {
+  const std::int64_t i = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
+  if (i >= n) return;
+  const auto limit = [threshold](point_id, point_id) { return threshold; };
+  const point_id* row = candidates + candidate_offsets[i];
+  const auto length = static_cast<std::size_t>(candidate_offsets[i + 1] - candidate_offsets[i]);
+  std::int64_t at = Pick ? offsets[i] : 0;
+  walk_row<D, M>(row, length, static_cast<point_id>(i), tables, frame, limit, half, self_interaction,
+                 [&](const CellEntry&, std::int64_t position) {
+                   if constexpr (Pick)
+                     picked[at] = static_cast<std::uint64_t>(i) << 32 | static_cast<std::uint32_t>(position);
+                   ++at;
+                 });
+  if constexpr (!Pick) offsets[i + 1] = at;
+}
+
+/// Where the entries' outputs go (null: not asked for).
 struct EntryArrays {
   point_id* indices;
   std::int32_t* shifts;
@@ -71,31 +93,24 @@ struct EntryArrays {
   double* vectors;
 };
 
-/// Row i's candidates walked (walk_row): counted into offsets[i + 1] when !Write, else written
-/// from offsets[i] on.
-template <int D, Metric M, bool Write>
-__global__ void walk_rows(const std::int64_t* candidate_offsets, const point_id* candidates, std::int64_t n,
-                          ImageTables tables, CellFrame frame, double threshold, bool half, bool self_interaction,
-                          std::int64_t* offsets, EntryArrays out) {
-  const std::int64_t i = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
-  if (i >= n) return;
-  const auto limit = [threshold](point_id, point_id) { return threshold; };
-  const point_id* row = candidates + candidate_offsets[i];
-  const auto length = static_cast<std::size_t>(candidate_offsets[i + 1] - candidate_offsets[i]);
-  std::int64_t at = Write ? offsets[i] : 0;
-  walk_row<D, M>(row, length, static_cast<point_id>(i), tables, frame, limit, half, self_interaction,
-                 [&](const CellEntry& e) {
-                   if constexpr (Write) {
-                     out.indices[at] = e.j;
-                     for (int a = 0; a < D; ++a) {
-                       if (out.shifts) out.shifts[at * D + a] = e.shift[a];
-                       if (out.vectors) out.vectors[at * D + a] = e.vector[a];
-                     }
-                     if (out.distances) out.distances[at] = M == Metric::euclidean ? sqrt(e.accumulated) : e.accumulated;
-                   }
-                   ++at;
-                 });
-  if constexpr (!Write) offsets[i + 1] = at;
+/// A thread per entry, so that neighbouring threads write neighbouring entries: each picked
+/// candidate measured again (candidate_entry, the walk's own) and written.
+template <int D, Metric M>
+__global__ void write_entries(const std::uint64_t* picked, std::int64_t total, const std::int64_t* candidate_offsets,
+                              const point_id* candidates, ImageTables tables, CellFrame frame, EntryArrays out) {
+  const std::int64_t at = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
+  if (at >= total) return;
+  const auto i = static_cast<point_id>(picked[at] >> 32);
+  const auto position = static_cast<std::uint32_t>(picked[at]);
+  CellEntry e;
+  if (position == ~0u) self_entry<D, M>(i, tables, frame, e);
+  else candidate_entry<D, M>(candidates[candidate_offsets[i] + position], i, tables, frame, e);
+  out.indices[at] = e.j;
+  for (int a = 0; a < D; ++a) {
+    if (out.shifts) out.shifts[at * D + a] = e.shift[a];
+    if (out.vectors) out.vectors[at * D + a] = e.vector[a];
+  }
+  if (out.distances) out.distances[at] = M == Metric::euclidean ? sqrt(e.accumulated) : e.accumulated;
 }
 
 /// offsets[1 .. n] summed in place (offsets[0] = 0), and the total read back.
@@ -168,9 +183,8 @@ DeviceNeighborList DeviceListAccess::search_cell(const double* xyz, std::size_t 
   wrap_points<<<blocks_for(count), block_size, 0, stream>>>(xyz, n, problem.frame, reach, wraps.get(),
                                                             fractional.get(), first.get(), flags.get() + 2);
   check_launch("wrap_points");
-  const std::int64_t images = scan_in_place(first.get(), n, stream, meter);
   HORIZON_CUDA_CHECK(cudaMemcpyAsync(found, flags.get(), sizeof(found), cudaMemcpyDeviceToHost, stream));
-  HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
+  const std::int64_t images = scan_in_place(first.get(), n, stream, meter);  // waits for both
   if (found[2] != ~0ull) throw Error("point " + std::to_string(found[2]) + " lies more than 2^30 cells away from the cell");
   if (static_cast<std::size_t>(images) + count >= static_cast<std::size_t>(std::numeric_limits<point_id>::max()))
     throw Error("cell: the points and their " + std::to_string(images) +
@@ -203,21 +217,22 @@ DeviceNeighborList DeviceListAccess::search_cell(const double* xyz, std::size_t 
   }
   const auto walked = std::chrono::steady_clock::now();
 
-  // Each row walked twice: counted, then written where the counts put it.
+  // Each row walked twice: counted, then its kept candidates picked where the counts put them;
+  // then the entries written, a thread each.
   const ImageTables tables{xyz, wraps.get(), image_of.get(), image_shift.get(), count};
   const double threshold = metric_threshold(problem.metric, problem.horizon);
-  const auto walk = [&](auto d, auto m, auto write, EntryArrays out) {
-    walk_rows<decltype(d)::value, decltype(m)::value, decltype(write)::value>
+  const auto walk = [&](auto d, auto m, auto pick, std::uint64_t* picked) {
+    walk_rows<decltype(d)::value, decltype(m)::value, decltype(pick)::value>
         <<<blocks_for(count), block_size, 0, stream>>>(candidates.offsets(), candidates.indices(), n, tables,
                                                        problem.frame, threshold, problem.half,
-                                                       problem.self_interaction, offsets.get(), out);
+                                                       problem.self_interaction, offsets.get(), picked);
   };
-  with_dims_and_metric(dims, problem.metric, [&](auto d, auto m) { walk(d, m, std::false_type{}, EntryArrays{}); });
+  with_dims_and_metric(dims, problem.metric, [&](auto d, auto m) { walk(d, m, std::false_type{}, nullptr); });
   check_launch("walk_rows (count)");
   const std::int64_t total = scan_in_place(offsets.get(), n, stream, meter);
 
   const auto entries = static_cast<std::size_t>(total), d = static_cast<std::size_t>(dims);
-  const std::size_t needed = entries * (sizeof(point_id) + (wanted.shifts ? d * sizeof(std::int32_t) : 0) +
+  const std::size_t needed = entries * (sizeof(std::uint64_t) + sizeof(point_id) + (wanted.shifts ? d * sizeof(std::int32_t) : 0) +
                                         (wanted.distances ? sizeof(double) : 0) + (wanted.vectors ? d * sizeof(double) : 0));
   const std::size_t available = available_device_bytes(meter);
   if (needed > available)
@@ -225,12 +240,21 @@ DeviceNeighborList DeviceListAccess::search_cell(const double* xyz, std::size_t 
                                 " bytes of GPU memory, " + std::to_string(available) +
                                 " are free (the host API builds it in batches)",
                             needed, available);
+  DeviceArray<std::uint64_t> picked(entries, meter);
+  with_dims_and_metric(dims, problem.metric, [&](auto d, auto m) { walk(d, m, std::true_type{}, picked.get()); });
+  check_launch("walk_rows (pick)");
   DeviceArray<point_id> indices(entries, meter);
   DeviceArray<std::int32_t> shifts(wanted.shifts ? entries * d : 0, meter);
   DeviceArray<double> distances(wanted.distances ? entries : 0, meter), vectors(wanted.vectors ? entries * d : 0, meter);
   const EntryArrays out{indices.get(), shifts.get(), distances.get(), vectors.get()};
-  with_dims_and_metric(dims, problem.metric, [&](auto d, auto m) { walk(d, m, std::true_type{}, out); });
-  check_launch("walk_rows (write)");
+  if (entries > 0) {
+    with_dims_and_metric(dims, problem.metric, [&](auto d, auto m) {
+      write_entries<decltype(d)::value, decltype(m)::value><<<blocks_for(entries), block_size, 0, stream>>>(
+          picked.get(), total, candidates.offsets(), candidates.indices(), tables, problem.frame, out);
+    });
+    check_launch("write_entries");
+  }
+  picked.reset();
 
   list.total_ = total;
   list.offsets_ = {offsets.release(), DeviceNeighborList::Free{stream}};
