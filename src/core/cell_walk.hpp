@@ -66,7 +66,6 @@ HORIZON_HOST_DEVICE void walk_row(const point_id* row, std::size_t length, point
     else past = middle;
   }
   auto candidate = [&](point_id k, CellEntry& e) {
-    if (k == i) return false;  // i's own wrapped copy (a row of every point holds it)
     candidate_entry<D, M>(k, i, t, frame, e);
     return e.accumulated < threshold(i, e.j) && keeps_entry(t.name(i), t.name(e.j), e.shift, half, self_interaction);
   };

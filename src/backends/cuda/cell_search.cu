@@ -63,35 +63,20 @@ __global__ void place_images(const double* xyz, std::int64_t n, CellFrame frame,
                local + (n + first[i]) * dims, image_of + first[i], image_shift + first[i] * 3);
 }
 
-/// Each row's candidates: the engine's rows, or for a small system every point and image
-/// (`all` of them, ids[k] = k: the walk skips i itself).
-struct CandidateRows {
-  const std::int64_t* offsets;
-  const point_id* ids;
-  std::int64_t all;  // > 0: every row is ids[0, all)
-  __device__ const point_id* row(std::int64_t i) const { return all ? ids : ids + offsets[i]; }
-  __device__ std::size_t length(std::int64_t i) const {
-    return static_cast<std::size_t>(all ? all : offsets[i + 1] - offsets[i]);
-  }
-};
-
-__global__ void fill_ids(point_id* ids, std::int64_t count) {
-  const std::int64_t k = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
-  if (k < count) ids[k] = static_cast<point_id>(k);
-}
-
 /// Row i's candidates walked (walk_row): counted into offsets[i + 1] when !Pick; else each kept
 /// one picked, from offsets[i] on, as (i << 32 | its position in the row, ~0 for i itself).
 /// A thread per row writes scattered; the entries' outputs are written by write_entries.
 template <int D, Metric M, bool Pick>
-__global__ void walk_rows(CandidateRows candidates, std::int64_t n, ImageTables tables, CellFrame frame,
-                          double threshold, bool half, bool self_interaction, std::int64_t* offsets,
-                          std::uint64_t* picked) {
+__global__ void walk_rows(const std::int64_t* candidate_offsets, const point_id* candidates, std::int64_t n,
+                          ImageTables tables, CellFrame frame, double threshold, bool half, bool self_interaction,
+                          std::int64_t* offsets, std::uint64_t* picked) {
   const std::int64_t i = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
   if (i >= n) return;
   const auto limit = [threshold](point_id, point_id) { return threshold; };
+  const point_id* row = candidates + candidate_offsets[i];
+  const auto length = static_cast<std::size_t>(candidate_offsets[i + 1] - candidate_offsets[i]);
   std::int64_t at = Pick ? offsets[i] : 0;
-  walk_row<D, M>(candidates.row(i), candidates.length(i), static_cast<point_id>(i), tables, frame, limit, half, self_interaction,
+  walk_row<D, M>(row, length, static_cast<point_id>(i), tables, frame, limit, half, self_interaction,
                  [&](const CellEntry&, std::int64_t position) {
                    if constexpr (Pick)
                      picked[at] = static_cast<std::uint64_t>(i) << 32 | static_cast<std::uint32_t>(position);
@@ -111,15 +96,15 @@ struct EntryArrays {
 /// A thread per entry, so that neighbouring threads write neighbouring entries: each picked
 /// candidate measured again (candidate_entry, the walk's own) and written.
 template <int D, Metric M>
-__global__ void write_entries(const std::uint64_t* picked, std::int64_t total, CandidateRows candidates,
-                              ImageTables tables, CellFrame frame, EntryArrays out) {
+__global__ void write_entries(const std::uint64_t* picked, std::int64_t total, const std::int64_t* candidate_offsets,
+                              const point_id* candidates, ImageTables tables, CellFrame frame, EntryArrays out) {
   const std::int64_t at = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
   if (at >= total) return;
   const auto i = static_cast<point_id>(picked[at] >> 32);
   const auto position = static_cast<std::uint32_t>(picked[at]);
   CellEntry e;
   if (position == ~0u) self_entry<D, M>(i, tables, frame, e);
-  else candidate_entry<D, M>(candidates.row(i)[position], i, tables, frame, e);
+  else candidate_entry<D, M>(candidates[candidate_offsets[i] + position], i, tables, frame, e);
   out.indices[at] = e.j;
   for (int a = 0; a < D; ++a) {
     if (out.shifts) out.shifts[at * D + a] = e.shift[a];
@@ -149,9 +134,6 @@ std::int64_t scan_in_place(std::int64_t* offsets, std::int64_t n, cudaStream_t s
   throw Error("point " + std::to_string(value / static_cast<unsigned long long>(dims)) +
               " has a non-finite coordinate (" + std::to_string(bad) + ")");
 }
-
-/// Up to this many points and images, every row's candidates are all of them.
-constexpr std::size_t small_system_points = 8192;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -218,16 +200,7 @@ DeviceNeighborList DeviceListAccess::search_cell(const double* xyz, std::size_t 
   fractional.reset();
   first.reset();
 
-  // The candidates: for a small system every point and image (each row's thread tests a few
-  // thousand, where the engine's grid costs a dozen kernels and their waits: 0.4-2.6 ms for 1 to
-  // 4,096 atoms on an H100), else the engine's query search of the wrapped points among them all.
-  const bool small = local_count <= small_system_points;
-  DeviceArray<point_id> every(small ? local_count : 0, meter);
-  DeviceNeighborList engine_rows;
-  if (small) {
-    fill_ids<<<blocks_for(local_count), block_size, 0, stream>>>(every.get(), static_cast<std::int64_t>(local_count));
-    check_launch("fill_ids");
-  }
+  // The candidates: the engine's query search of the wrapped points among them all.
   SearchOptions inner = options;
   inner.horizon = problem.largest + margin;
   inner.half = false;
@@ -237,9 +210,7 @@ DeviceNeighborList DeviceListAccess::search_cell(const double* xyz, std::size_t 
   inner.cell = Cell{};
   inner.outputs = PairOutputs{};
   inner.self_interaction = false;
-  if (!small) engine_rows = search(local.get(), local_count, dims, inner, stream, nullptr, nullptr);
-  const CandidateRows candidates{engine_rows.offsets(), small ? every.get() : engine_rows.indices(),
-                                 small ? static_cast<std::int64_t>(local_count) : 0};
+  const DeviceNeighborList candidates = search(local.get(), local_count, dims, inner, stream, nullptr, nullptr);
   if (stats) {
     HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
     stats->grid_seconds = seconds_since(start);
@@ -252,7 +223,7 @@ DeviceNeighborList DeviceListAccess::search_cell(const double* xyz, std::size_t 
   const double threshold = metric_threshold(problem.metric, problem.horizon);
   const auto walk = [&](auto d, auto m, auto pick, std::uint64_t* picked) {
     walk_rows<decltype(d)::value, decltype(m)::value, decltype(pick)::value>
-        <<<blocks_for(count), block_size, 0, stream>>>(candidates, n, tables,
+        <<<blocks_for(count), block_size, 0, stream>>>(candidates.offsets(), candidates.indices(), n, tables,
                                                        problem.frame, threshold, problem.half,
                                                        problem.self_interaction, offsets.get(), picked);
   };
@@ -279,7 +250,7 @@ DeviceNeighborList DeviceListAccess::search_cell(const double* xyz, std::size_t 
   if (entries > 0) {
     with_dims_and_metric(dims, problem.metric, [&](auto d, auto m) {
       write_entries<decltype(d)::value, decltype(m)::value><<<blocks_for(entries), block_size, 0, stream>>>(
-          picked.get(), total, candidates, tables, problem.frame, out);
+          picked.get(), total, candidates.offsets(), candidates.indices(), tables, problem.frame, out);
     });
     check_launch("write_entries");
   }
