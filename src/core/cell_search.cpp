@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -121,7 +122,8 @@ NeighborList map_rows(const NeighborList& candidates, const ImageTables& tables,
   {
     std::vector<CellEntry> kept;
     std::vector<std::uint64_t> keys;
-    const hwy::Sorter sorter;
+    std::optional<hwy::Sorter> sorter;  // its construction asks the kernel for random bytes
+    if (sort_again) sorter.emplace();
 #pragma omp for schedule(dynamic, 512)
     for (std::int64_t p = 0; p < rows; ++p) {
       const point_id i = tables.name(static_cast<point_id>(p));
@@ -138,7 +140,7 @@ NeighborList map_rows(const NeighborList& candidates, const ImageTables& tables,
       if (sort_again) {
         keys.resize(kept.size());
         for (std::size_t k = 0; k < kept.size(); ++k) keys[k] = std::uint64_t(std::uint32_t(kept[k].j)) << 32 | k;
-        sorter(keys.data(), keys.size(), hwy::SortAscending());
+        (*sorter)(keys.data(), keys.size(), hwy::SortAscending());
         for (const std::uint64_t key : keys) spacious.write(at++, kept[key & 0xffffffffu]);
       }
       offsets[i + 1] = static_cast<std::int64_t>(at - first);
@@ -167,7 +169,8 @@ bool scattered(PointView points, double horizon) {
   const double far = 64 * horizon * horizon;
   std::size_t apart = 0;
   for (std::size_t s = 0; s < samples; ++s) {
-    const std::size_t i = s * (points.size() - 1) / samples;
+    // Scattered over the ids (a regular stride can fall on a lattice's every row end).
+    const std::size_t i = static_cast<std::size_t>((s * 0x9E3779B97F4A7C15ull) % (points.size() - 1));
     double d2 = 0;
     for (int a = 0; a < points.dims(); ++a) d2 += (points(i + 1, a) - points(i, a)) * (points(i + 1, a) - points(i, a));
     apart += d2 > far;
