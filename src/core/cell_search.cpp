@@ -106,9 +106,7 @@ NeighborList map_rows(const NeighborList& candidates, const ImageTables& tables,
   const PairOutputs& out = problem.outputs;
   const std::size_t entry_bytes = sizeof(point_id) + (out.shifts ? D * sizeof(std::int32_t) : 0) +
                                   (out.distances ? sizeof(double) : 0) + (out.vectors ? D * sizeof(double) : 0);
-  // Reading /proc/meminfo costs ~20 us, more than a small cell's whole search: large lists only.
-  if (options.max_memory > 0 || capacity * entry_bytes >= (std::size_t{64} << 20))
-    check_list_fits(static_cast<std::int64_t>(capacity), options, entry_bytes);
+  check_list_fits(static_cast<std::int64_t>(capacity), options, entry_bytes);
   CellEntries spacious(capacity, D, problem.outputs, problem.metric);
   Buffer<std::int64_t> offsets(points + 1);
   offsets[0] = 0;

@@ -232,8 +232,9 @@ DeviceNeighborList DeviceListAccess::search_cell(const double* xyz, std::size_t 
   const std::int64_t total = scan_in_place(offsets.get(), n, stream, meter);
 
   const auto entries = static_cast<std::size_t>(total), d = static_cast<std::size_t>(dims);
-  const std::size_t needed = entries * (sizeof(std::uint64_t) + sizeof(point_id) + (wanted.shifts ? d * sizeof(std::int32_t) : 0) +
-                                        (wanted.distances ? sizeof(double) : 0) + (wanted.vectors ? d * sizeof(double) : 0));
+  const std::size_t entry_bytes = sizeof(point_id) + (wanted.shifts ? d * sizeof(std::int32_t) : 0) +
+                                  (wanted.distances ? sizeof(double) : 0) + (wanted.vectors ? d * sizeof(double) : 0);
+  const std::size_t needed = entries * (sizeof(std::uint64_t) + entry_bytes);  // the picks, then the list
   const std::size_t available = available_device_bytes(meter);
   if (needed > available)
     throw DeviceOutOfMemory("the neighbour list and its outputs need " + std::to_string(needed) +
