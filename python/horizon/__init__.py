@@ -195,9 +195,9 @@ class VerletList:
 
 
 class _CudaArray:
-    """An array in GPU memory (1-D, or rows of `width`), exported through __cuda_array_interface__ (version 3) so that
-    torch.as_tensor(a, device="cuda") and cupy.asarray(a) take it without a copy; it keeps the
-    list that owns the memory alive."""
+    """An array in GPU memory (1-D, or rows of `width`), exported through __cuda_array_interface__
+    (version 3) so that torch.as_tensor(a, device="cuda") and cupy.asarray(a) take it without a
+    copy; it keeps the list that owns the memory alive."""
 
     def __init__(self, owner, pointer, length, typestr, width=1):
         self._owner = owner
