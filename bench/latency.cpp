@@ -17,6 +17,9 @@
 #include "horizon/search.hpp"
 #include "horizon/stopwatch.hpp"
 #include "textbook_cell_list.hpp"
+#if defined(HORIZON_WITH_VESIN)
+#include "vesin.h"
+#endif
 
 namespace bench {
 namespace {
@@ -74,6 +77,28 @@ std::vector<Calls> time_in_turn(const std::vector<std::function<void()>>& calls,
   return timed;
 }
 
+#if defined(HORIZON_WITH_VESIN)
+/// vesin's full list of the points (open boundaries, ids only, rows unsorted) on one thread,
+/// into `list`, reused from call to call as vesin intends; its length.
+long long run_vesin(const horizon::PointSet& points, double cutoff, VesinNeighborList& list) {
+  VesinOptions options{};
+  options.cutoff = cutoff;
+  options.full = true;
+  options.sorted = false;
+  options.algorithm = VesinAutoAlgorithm;
+  options.n_threads = 1;
+  const double box[3][3] = {};
+  const bool periodic[3] = {false, false, false};
+  const char* error = nullptr;
+  if (vesin_neighbors(reinterpret_cast<const double(*)[3]>(points.xyz.data()), points.size(), box, periodic,
+                      {VesinCPU, 0}, options, &list, &error) != 0) {
+    std::fprintf(stderr, "vesin: %s\n", error ? error : "error");
+    std::exit(1);
+  }
+  return static_cast<long long>(list.length);
+}
+#endif
+
 double quantile(const std::vector<double>& sorted, double q) {
   return sorted[std::min(sorted.size() - 1, static_cast<std::size_t>(q * static_cast<double>(sorted.size())))];
 }
@@ -105,6 +130,14 @@ int run_latency(const LatencyOptions& options) {
       std::vector<horizon::SearchStats> stats(backends.size());
       std::vector<std::function<void()>> calls{
           [&] { entries[0] = static_cast<long long>(textbook_cell_list(points, 1.0, 1).indices.size()); }};
+#if defined(HORIZON_WITH_VESIN)
+      VesinNeighborList vesin_list{};
+      long long vesin_entries = 0;
+      calls.push_back([&] { vesin_entries = run_vesin(points, 1.0, vesin_list); });
+      const std::size_t first_backend = 2;
+#else
+      const std::size_t first_backend = 1;
+#endif
       for (std::size_t k = 0; k < backends.size(); ++k)
         calls.push_back([&, k] {
           horizon::SearchOptions search;
@@ -114,11 +147,15 @@ int run_latency(const LatencyOptions& options) {
         });
       const std::vector<Calls> timed = time_in_turn(calls, options.seconds);
       report("textbook", 1, timed[0], entries[0]);
+#if defined(HORIZON_WITH_VESIN)
+      report("vesin", 1, timed[1], vesin_entries);
+      vesin_free(&vesin_list);
+#endif
       for (std::size_t k = 0; k < backends.size(); ++k) {
         const std::string name = backends[k] == horizon::Backend::automatic
                                      ? std::string("auto:") + horizon::backend_name(stats[k].backend)
                                      : horizon::backend_name(backends[k]);
-        report(name.c_str(), stats[k].threads, timed[k + 1], entries[k + 1]);
+        report(name.c_str(), stats[k].threads, timed[first_backend + k], entries[k + 1]);
       }
     }
   }

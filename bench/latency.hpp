@@ -13,7 +13,8 @@ struct LatencyOptions {
 };
 
 /// Prints CSV: busy, points, backend, threads, calls, median_us, p99_us, max_us, first_us. The
-/// anchor is the textbook cell list on one core (bench/textbook_cell_list.cpp).
+/// anchors, on one core: the textbook cell list (bench/textbook_cell_list.cpp) and, when the
+/// benchmarks were built with a copy of it, vesin (its full list, unsorted, reused call to call).
 int run_latency(const LatencyOptions& options);
 
 }  // namespace bench

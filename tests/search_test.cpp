@@ -139,6 +139,37 @@ TEST(Backends, MoreThreadsThanPoints) {
   EXPECT_EQ(list.total(), 20);  // every pair within 20 in a cube of side 10
 }
 
+TEST(Backends, AFewPointsTestEveryPairAsTheOracleDoes) {
+  // Up to 64 points the serial backend tests every pair without a grid: random, clustered
+  // (duplicates: distance 0) and lattice points (pairs at exactly the horizon are out), 2-D and
+  // 3-D, every metric, half lists, float32; 65 points take the grid, the same list.
+  std::mt19937_64 rng(64);
+  const Metric metrics[] = {Metric::euclidean, Metric::manhattan, Metric::chebyshev};
+  for (std::size_t n : {0, 1, 2, 7, 31, 63, 64, 65}) {
+    for (int dims : {2, 3}) {
+      PointSet cloud = random_cloud(n, dims, rng());
+      PointSet duplicates = cloud;
+      for (std::size_t i = 1; i < n; i += 3)
+        std::copy_n(&duplicates.xyz[0], dims, &duplicates.xyz[i * static_cast<std::size_t>(dims)]);
+      PointSet grid{dims, {}};
+      for (std::size_t i = 0; i < n; ++i)
+        for (int a = 0; a < dims; ++a) grid.xyz.push_back(static_cast<double>(i >> (2 * a) & 3));
+      for (const PointSet* points : {&cloud, &duplicates, &grid})
+        for (Metric metric : metrics)
+          for (bool half : {false, true}) {
+            SearchOptions options = options_for(points == &grid ? 1.0 : 4.0);
+            options.metric = metric;
+            options.half = half;
+            const NeighborList list = search(points->view(), options);
+            EXPECT_EQ(list, brute_force(points->view(), options)) << n << " points, " << dims << "-D";
+            std::vector<float> single(points->xyz.begin(), points->xyz.end());
+            const PointSet promoted{dims, std::vector<double>(single.begin(), single.end())};
+            EXPECT_EQ(search(PointView(single.data(), n, dims), options), brute_force(promoted.view(), options));
+          }
+    }
+  }
+}
+
 TEST(Backends, AutoPicksAnAvailableBackend) {
   SearchStats stats;
   const PointSet points = lattice(5);

@@ -80,13 +80,19 @@ int other_runnable_threads(int own) {
 BackendChoice choose_backend(std::size_t points, const SearchOptions& options) {
   static thread_local int last_team = 1;  // this thread's last team: its workers may still be spinning
   BackendChoice choice;
-  const int cpus = usable_cpus();
-  if (options.backend != Backend::automatic) {
+  if (options.backend != Backend::automatic) {  // the CPUs are not asked for one core (a system call)
     choice.backend = options.backend;
-    choice.threads = options.backend == Backend::serial ? 1 : options.threads > 0 ? options.threads : cpus;
+    choice.threads = options.backend == Backend::serial ? 1 : options.threads > 0 ? options.threads : usable_cpus();
     choice.reason = "asked for";
     return choice;
   }
+  if (options.threads <= 0 && options.devices.empty() && points < serial_below && points < gpu_min_points) {
+    choice.backend = Backend::serial;  // no CPU or GPU count needed: a 10-point call takes ~0.4 us
+    choice.threads = last_team = 1;
+    choice.reason = "fewer than " + std::to_string(serial_below) + " points: one core";
+    return choice;
+  }
+  const int cpus = usable_cpus();
   if (!options.devices.empty()) {
     choice.backend = Backend::cuda;
     choice.threads = cpus;

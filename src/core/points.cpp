@@ -69,11 +69,18 @@ void detail::check_finite(PointView points, int threads) {
   const std::size_t values = points.size() * static_cast<std::size_t>(points.dims());
   const auto pieces = static_cast<std::int64_t>((values + piece - 1) / piece);
   std::int64_t first_bad = pieces;
-  const int team = threads > 0 ? threads : omp_get_max_threads();
-#pragma omp parallel for schedule(static) reduction(min : first_bad) num_threads(team) if (pieces > 4)
-  for (std::int64_t p = 0; p < pieces; ++p) {
+  const auto bad = [&](std::int64_t p) {
     const std::size_t begin = static_cast<std::size_t>(p) * piece;
-    if (any_non_finite(points, begin, std::min(values, begin + piece))) first_bad = std::min(first_bad, p);
+    return any_non_finite(points, begin, std::min(values, begin + piece));
+  };
+  const int team = threads > 0 ? threads : omp_get_max_threads();
+  if (pieces <= 4 || team == 1) {  // no parallel region: even an inactive one costs a small search ~0.4 us
+    for (std::int64_t p = 0; p < pieces && first_bad == pieces; ++p)
+      if (bad(p)) first_bad = p;
+  } else {
+#pragma omp parallel for schedule(static) reduction(min : first_bad) num_threads(team)
+    for (std::int64_t p = 0; p < pieces; ++p)
+      if (bad(p)) first_bad = std::min(first_bad, p);
   }
   for (std::size_t at = static_cast<std::size_t>(first_bad) * piece; at < values; ++at) {
     const std::size_t i = at / static_cast<std::size_t>(points.dims());
