@@ -346,45 +346,6 @@ TEST(Cuda, DeviceResidentCellSearchEqualsTheHostAtScale) {
   cudaStreamDestroy(stream);
 }
 
-TEST(Cuda, EntryArraysAreTheListsRowsNeighboursAndShiftsWidened) {
-  REQUIRE_GPU();
-  // A primitive cell (two rows of thousands of entries) and a cloud without shifts: i, j and S
-  // as int64 on the GPU, equal to the host list read row by row.
-  Cell primitive;
-  primitive.vectors = {{{0, 1.8, 1.8}, {1.8, 0, 1.8}, {1.8, 1.8, 0}}};
-  primitive.pbc = {true, true, true};
-  SearchOptions cell_options;
-  cell_options.cell = primitive;
-  cell_options.horizon = 9;
-  cell_options.outputs = {true, false, false};
-  PointSet two;
-  two.dims = 3;
-  two.xyz = {0, 0, 0, 0.9, 0.9, 0.9};
-  SearchOptions cloud_options;
-  cloud_options.horizon = 0.3;
-  cloud_options.half = true;
-  const PointSet cloud = random_cloud(20000, 3, 7);
-  for (const auto& [points, options] : {std::pair{two, cell_options}, std::pair{cloud, cloud_options}}) {
-    const OnGpu gpu(points);
-    const DeviceNeighborList list = search_device(gpu.xyz, points.size(), 3, options);
-    const DeviceEntryArrays arrays = entry_arrays(list);
-    const NeighborList host = list.to_host(options.half);
-    const auto entries = static_cast<std::size_t>(list.total());
-    std::vector<std::int64_t> i(entries), j(entries), shifts(options.outputs.shifts ? entries * 3 : 0);
-    ASSERT_EQ(cudaMemcpy(i.data(), arrays.i.get(), entries * 8, cudaMemcpyDeviceToHost), cudaSuccess);
-    ASSERT_EQ(cudaMemcpy(j.data(), arrays.j.get(), entries * 8, cudaMemcpyDeviceToHost), cudaSuccess);
-    ASSERT_EQ(arrays.shifts != nullptr, options.outputs.shifts);
-    if (arrays.shifts)
-      ASSERT_EQ(cudaMemcpy(shifts.data(), arrays.shifts.get(), shifts.size() * 8, cudaMemcpyDeviceToHost), cudaSuccess);
-    for (std::size_t row = 0; row < host.size(); ++row)
-      for (auto e = host.offsets()[row]; e < host.offsets()[row + 1]; ++e) {
-        ASSERT_EQ(i[e], static_cast<std::int64_t>(row));
-        ASSERT_EQ(j[e], host.indices()[e]);
-        for (std::size_t a = 0; a < shifts.size() / entries; ++a) ASSERT_EQ(shifts[e * 3 + a], host.shifts()[e * 3 + a]);
-      }
-  }
-}
-
 TEST(Cuda, DeviceResidentCellSearchRefusesBadInputClearly) {
   REQUIRE_GPU();
   SearchOptions options;

@@ -73,14 +73,6 @@ private:
   std::int64_t total_ = 0;
 };
 
-/// A list's entries as ASE's arrays, in GPU memory: per entry its row `i` and its neighbour `j`
-/// (int64), and its shift widened to int64 (dims() per entry; null when the list has no
-/// shifts). Made on the list's stream, on the current device (the list's), and freed there.
-struct DeviceEntryArrays {
-  std::unique_ptr<std::int64_t, DeviceNeighborList::Free> i, j, shifts;
-};
-DeviceEntryArrays entry_arrays(const DeviceNeighborList& list);
-
 /// The neighbour list of `count` points whose AoS coordinates (x y [z], float64) are in GPU
 /// memory at `xyz`, computed on `stream` (of device options.device, which must be current).
 /// A periodic options.box is honoured as by search() (points checked against it on the GPU);

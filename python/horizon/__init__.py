@@ -246,16 +246,6 @@ class DeviceNeighborList:
     def device(self):
         return self._owned.device
 
-    def entry_arrays(self):
-        """Per entry, in GPU memory (int64 CUDA arrays): its row i (a DevicePart's row; device_ids
-        names its point), its neighbour j and its shift ((total, dims), None without shifts):
-        ASE's i, j and S, or what index_add and scatter calls take."""
-        owned = self._owned.entry_arrays()
-        shifts = owned.shifts_pointer
-        return (_CudaArray(owned, owned.i_pointer, self.total, "<i8"),
-                _CudaArray(owned, owned.j_pointer, self.total, "<i8"),
-                _CudaArray(owned, shifts, self.total, "<i8", self._dims) if shifts else None)
-
     def to_host(self):
         owned = self._owned.to_host()
         nl = NeighborList(owned.offsets, owned.indices, self.half)

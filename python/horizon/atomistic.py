@@ -3,8 +3,7 @@ conventions (ase.neighborlist.neighbor_list and primitive_neighbor_list), withou
 
     i, j, S, d = horizon.neighbor_list("ijSd", atoms, 5.0)
 
-Entries come ordered by i, then j, then the shift S (ASE orders by i only). Positions in GPU
-memory (a CUDA array: CuPy, PyTorch) give CUDA arrays back, made on the GPU.
+Entries come ordered by i, then j, then the shift S (ASE orders by i only).
 """
 import numpy as np
 
@@ -32,8 +31,7 @@ def primitive_neighbor_list(quantities, pbc, cell, positions, cutoff, numbers=No
     d (float64 distances), D (float64 (M, 3) vectors x_j + S . cell - x_i), S (int64 (M, 3)
     shifts in cell vectors); pbc: three bools; cell: (3, 3), rows the cell vectors (a vector of
     zeros on an open axis is fine); positions: (N, 3) Cartesian (or fractional, with
-    use_scaled_positions), or a CUDA array (float64, a float cutoff): then every result is a
-    CUDA array, made on the GPU; cutoff: a float, one radius per atom (a pair is in when d < r_i +
+    use_scaled_positions); cutoff: a float, one radius per atom (a pair is in when d < r_i +
     r_j), or a dict {(Z1, Z2): cutoff} by atomic number or symbol (pairs not named are out; needs
     numbers); self_interaction: each atom is its own neighbour at S = 0.
     Beyond ASE: backend ("auto", "serial", "openmp", "cuda"), half (each pair once: i < j, or
@@ -42,18 +40,15 @@ def primitive_neighbor_list(quantities, pbc, cell, positions, cutoff, numbers=No
     """
     from . import search
     del max_nbins  # horizon's grid has no bin limit to set
-    for q in quantities:
-        if q not in "ijdDS":
-            raise ValueError(f"unsupported quantity {q!r}: each letter must be one of i, j, d, D, S")
-    if hasattr(positions, "__cuda_array_interface__"):
-        return _on_gpu(quantities, pbc, cell, positions, cutoff, self_interaction, use_scaled_positions, backend,
-                       half)
     positions = np.asarray(positions, dtype=np.float64)
     if positions.ndim != 2 or positions.shape[1] != 3:
         raise ValueError(f"positions must be an (N, 3) array, not shape {positions.shape}")
     cell = np.asarray(cell, dtype=np.float64)
     if use_scaled_positions:
         positions = positions @ cell
+    for q in quantities:
+        if q not in "ijdDS":
+            raise ValueError(f"unsupported quantity {q!r}: each letter must be one of i, j, d, D, S")
     options = dict(backend=backend, half=half, threads=threads, cell=cell, pbc=pbc,
                    self_interaction=self_interaction, shifts="S" in quantities, vectors="D" in quantities,
                    distances="d" in quantities or isinstance(cutoff, dict))
@@ -86,28 +81,6 @@ def primitive_neighbor_list(quantities, pbc, cell, positions, cutoff, numbers=No
     values = {"i": i, "j": j, "d": nl.distances, "D": nl.vectors,
               "S": None if nl.shifts is None else nl.shifts.astype(np.int64)}
     out = tuple(values[q] if keep is None else values[q][keep] for q in quantities)
-    return out[0] if len(out) == 1 else out
-
-
-def _on_gpu(quantities, pbc, cell, positions, cutoff, self_interaction, use_scaled_positions, backend, half):
-    """primitive_neighbor_list of positions in GPU memory: the search and ASE's arrays made on
-    the GPU, returned as CUDA arrays (int64 i, j and S; float64 d and D)."""
-    from . import search
-    if backend not in ("auto", "cuda"):
-        raise ValueError(f"positions are a CUDA array: backend must be 'auto' or 'cuda', not {backend!r}")
-    if use_scaled_positions:
-        raise ValueError("use_scaled_positions=True is not supported for CUDA arrays: pass Cartesian positions")
-    if isinstance(cutoff, dict) or np.ndim(cutoff) != 0:
-        raise ValueError("positions are a CUDA array: cutoff must be a float (per-atom and per-pair cutoffs need "
-                         "host arrays)")
-    if hasattr(cell, "__cuda_array_interface__"):
-        raise ValueError("cell must be a host array (3, 3), not a CUDA array")
-    nl = search(positions, float(cutoff), half=half, cell=np.asarray(cell, dtype=np.float64), pbc=pbc,
-                self_interaction=self_interaction, shifts="S" in quantities, vectors="D" in quantities,
-                distances="d" in quantities)
-    i, j, shifts = nl.entry_arrays()
-    values = {"i": i, "j": j, "d": nl.distances, "D": nl.vectors, "S": shifts}
-    out = tuple(values[q] for q in quantities)
     return out[0] if len(out) == 1 else out
 
 

@@ -48,12 +48,6 @@ struct OwnedDeviceList {
   bool half;
 };
 
-/// A device list's entries as ASE's arrays (entry_arrays), owned by Python.
-struct OwnedEntryArrays {
-  horizon::DeviceEntryArrays arrays;
-  std::uintptr_t stream;
-};
-
 /// One GPU's part of a search left on the GPUs (search_device_parts), owned by Python.
 struct OwnedDevicePart {
   horizon::DevicePart part;
@@ -299,17 +293,7 @@ PYBIND11_MODULE(_horizon, m) {
       .def("to_host", [](const OwnedDeviceList& l) {
         py::gil_scoped_release unlocked;
         return OwnedList{l.list.to_host(l.half)};
-      })
-      .def("entry_arrays", [](const OwnedDeviceList& l) {
-        horizon::cuda_use_device_of(l.list.offsets());
-        return OwnedEntryArrays{horizon::entry_arrays(l.list), l.stream};
       });
-
-  py::class_<OwnedEntryArrays>(m, "OwnedEntryArrays")
-      .def_property_readonly("i_pointer", [](const OwnedEntryArrays& a) { return reinterpret_cast<std::uintptr_t>(a.arrays.i.get()); })
-      .def_property_readonly("j_pointer", [](const OwnedEntryArrays& a) { return reinterpret_cast<std::uintptr_t>(a.arrays.j.get()); })
-      .def_property_readonly("shifts_pointer", [](const OwnedEntryArrays& a) { return reinterpret_cast<std::uintptr_t>(a.arrays.shifts.get()); })
-      .def_property_readonly("stream", [](const OwnedEntryArrays& a) { return a.stream; });
 
   py::class_<OwnedDevicePart>(m, "OwnedDevicePart")
       .def_property_readonly("offsets_pointer", [](const OwnedDevicePart& p) { return reinterpret_cast<std::uintptr_t>(p.part.rows.offsets()); })
@@ -327,11 +311,6 @@ PYBIND11_MODULE(_horizon, m) {
       .def("to_host", [](const OwnedDevicePart& p) {
         py::gil_scoped_release unlocked;
         return OwnedList{p.part.rows.to_host(p.half)};
-      })
-      .def("entry_arrays", [](const OwnedDevicePart& p) {
-        horizon::cuda_use_device_of(p.part.rows.offsets());
-        return OwnedEntryArrays{horizon::entry_arrays(p.part.rows),
-                                reinterpret_cast<std::uintptr_t>(p.part.rows.stream())};
       });
 
   m.def("search_device_parts", &search_device_parts, py::arg("points"), py::arg("horizon"), py::arg("metric"),

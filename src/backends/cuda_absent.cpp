@@ -24,7 +24,6 @@ void copy_part_rows(const std::vector<PartRows>&, const std::int64_t*, point_id*
 
 void DeviceNeighborList::Free::operator()(void*) const {}
 NeighborList DeviceNeighborList::to_host(bool) const { no_cuda(); }
-DeviceEntryArrays entry_arrays(const DeviceNeighborList&) { no_cuda(); }
 DeviceNeighborList search_device(const double*, std::size_t, int, const SearchOptions&, cuda_stream,
                                  SearchStats*) {
   no_cuda();

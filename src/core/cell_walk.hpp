@@ -49,15 +49,14 @@ HORIZON_HOST_DEVICE inline void self_entry(point_id i, const ImageTables& t, con
   measure<D, M>(xi, xi, frame, e);
 }
 
-/// Walks row i of the engine's list (`length` candidates, ascending: `row` a pointer to them, or
-/// anything that indexes them so) in (j, S) order: the
+/// Walks row i of the engine's list (`length` candidates, ascending) in (j, S) order: the
 /// wrapped points' part (ascending j) and the images' part (ascending (j, G), so ascending
 /// (j, S)) merged, each candidate measured on the caller's coordinates and kept when its
 /// accumulated distance is below threshold(i, j) and keeps_entry() agrees on the caller's ids;
 /// `emit(entry, position)` gets each, j numbered as the points are in `t`, with the candidate's
 /// position in the row (-1: i itself at shift 0, which is no candidate).
-template <int D, Metric M, class Row, class Threshold, class Emit>
-HORIZON_HOST_DEVICE void walk_row(Row row, std::size_t length, point_id i, const ImageTables& t,
+template <int D, Metric M, class Threshold, class Emit>
+HORIZON_HOST_DEVICE void walk_row(const point_id* row, std::size_t length, point_id i, const ImageTables& t,
                                   const CellFrame& frame, const Threshold& threshold, bool half,
                                   bool self_interaction, Emit&& emit) {
   std::size_t split = 0, past = length;  // the first image: a binary search
@@ -67,7 +66,6 @@ HORIZON_HOST_DEVICE void walk_row(Row row, std::size_t length, point_id i, const
     else past = middle;
   }
   auto candidate = [&](point_id k, CellEntry& e) {
-    if (k == i) return false;  // i's own wrapped copy: only the GPU's rows of one point hold it
     candidate_entry<D, M>(k, i, t, frame, e);
     return e.accumulated < threshold(i, e.j) && keeps_entry(t.name(i), t.name(e.j), e.shift, half, self_interaction);
   };
@@ -115,8 +113,8 @@ HORIZON_HOST_DEVICE void walk_row(Row row, std::size_t length, point_id i, const
   std::size_t home_at = 0, image_at = split;
   CellEntry home, image;
   bool has_home = next_home(home_at, home), has_image = next_image(image_at, image);
-  // Past each next_*(), at is one after the kept candidate. No candidate of j = i at S = 0 is
-  // kept, so a home entry of j = i is the self entry.
+  // Past each next_*(), at is one after the kept candidate. The engine's rows never hold i
+  // itself, so a home entry of j = i is the self entry.
   auto home_position = [&] { return home.j == i ? std::int64_t{-1} : static_cast<std::int64_t>(home_at) - 1; };
   while (has_home || has_image) {
     if (has_home && (!has_image || entry_before(home, image))) {

@@ -84,29 +84,6 @@ def test_a_cell_on_the_gpu_gives_the_hosts_entries_and_geometry(library, half):
     assert horizon.search(to_gpu(library, points), 2.5, cell=cell).shifts is None
 
 
-@pytest.mark.parametrize("library", libraries)
-@pytest.mark.parametrize("half,self_interaction", [(False, False), (True, True)])
-def test_ase_functions_take_and_give_cuda_arrays(library, half, self_interaction):
-    rng = np.random.default_rng(59)
-    cell = np.array([[3.2, 0, 0], [1.1, 2.9, 0], [0.4, -0.6, 3.5]])  # a small triclinic cell: many images
-    positions = rng.uniform(0, 1, (12, 3)) @ cell
-    args = dict(half=half, self_interaction=self_interaction)
-    reference = horizon.primitive_neighbor_list("ijSdD", [True, True, False], cell, positions, 7.0, **args)
-    got = horizon.primitive_neighbor_list("ijSdD", [True, True, False], cell, to_gpu(library, positions), 7.0, **args)
-    assert all(hasattr(array, "__cuda_array_interface__") for array in got)
-    for expected, array in zip(reference, got):
-        values = to_numpy(library, array)
-        assert values.dtype == expected.dtype and values.shape == expected.shape
-        np.testing.assert_array_equal(values, expected)
-    i_only = horizon.primitive_neighbor_list("i", [True] * 3, cell, to_gpu(library, positions), 7.0)
-    np.testing.assert_array_equal(to_numpy(library, i_only),
-                                  horizon.primitive_neighbor_list("i", [True] * 3, cell, positions, 7.0))
-    with pytest.raises(ValueError, match="cutoff must be a float"):
-        horizon.primitive_neighbor_list("ij", [True] * 3, cell, to_gpu(library, positions), np.full(12, 2.0))
-    with pytest.raises(ValueError, match="backend must be"):
-        horizon.primitive_neighbor_list("ij", [True] * 3, cell, to_gpu(library, positions), 7.0, backend="serial")
-
-
 @pytest.mark.skipif("torch" not in libraries, reason="needs PyTorch")
 def test_a_solver_loop_on_the_gpu():
     points = torch.from_numpy(horizon.random_cloud(100000, seed=3)).cuda()

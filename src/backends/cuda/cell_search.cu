@@ -1,10 +1,9 @@
 // The cell search (a periodic cell of any shape, per-entry outputs, self_interaction) for
 // points in GPU memory, the CPU's method (core/cell_search.cpp) step by step on the device: the
 // points wrapped into the cell and their images made with the CPU's functions
-// (core/cell_images.hpp), the engine's query search of them all for the candidates (a small
-// system: every pair of points, j's copy and images as i's candidates), and each row walked
-// twice, to count and then to pick, by the CPU's own walk (core/cell_walk.hpp), compiled with
-// -fmad=false: both keep the same entries with the same bits.
+// (core/cell_images.hpp), the engine's query search of them all for the candidates, and each
+// row walked twice, to count and then to write, by the CPU's own walk (core/cell_walk.hpp),
+// compiled with -fmad=false: both keep the same entries with the same bits.
 #include <cub/device/device_scan.cuh>
 
 #include <chrono>
@@ -64,13 +63,9 @@ __global__ void place_images(const double* xyz, std::int64_t n, CellFrame frame,
                local + (n + first[i]) * dims, image_of + first[i], image_shift + first[i] * 3);
 }
 
-/// What a kept candidate is picked as: i << 32 | its candidate id k (~0: i itself at S = 0).
-__device__ std::uint64_t pick_of(std::int64_t i, point_id k, std::int64_t position) {
-  return static_cast<std::uint64_t>(i) << 32 | (position < 0 ? ~0u : static_cast<std::uint32_t>(k));
-}
-
-/// Row i of the engine's list walked (walk_row): counted into offsets[i + 1] when !Pick; else
-/// each kept candidate picked, from offsets[i] on. A thread per row.
+/// Row i's candidates walked (walk_row): counted into offsets[i + 1] when !Pick; else each kept
+/// one picked, from offsets[i] on, as (i << 32 | its position in the row, ~0 for i itself).
+/// A thread per row writes scattered; the entries' outputs are written by write_entries.
 template <int D, Metric M, bool Pick>
 __global__ void walk_rows(const std::int64_t* candidate_offsets, const point_id* candidates, std::int64_t n,
                           ImageTables tables, CellFrame frame, double threshold, bool half, bool self_interaction,
@@ -83,45 +78,11 @@ __global__ void walk_rows(const std::int64_t* candidate_offsets, const point_id*
   std::int64_t at = Pick ? offsets[i] : 0;
   walk_row<D, M>(row, length, static_cast<point_id>(i), tables, frame, limit, half, self_interaction,
                  [&](const CellEntry&, std::int64_t position) {
-                   if constexpr (Pick) picked[at] = pick_of(i, position < 0 ? 0 : row[position], position);
+                   if constexpr (Pick)
+                     picked[at] = static_cast<std::uint64_t>(i) << 32 | static_cast<std::uint32_t>(position);
                    ++at;
                  });
   if constexpr (!Pick) offsets[i + 1] = at;
-}
-
-/// Point j's candidates in a small system: its wrapped copy (id j), then its images (ids
-/// points + first[j] on, ascending G), as walk_row reads a row.
-struct PointAndImages {
-  point_id j, first_image;
-  __device__ point_id operator[](std::size_t k) const { return k == 0 ? j : first_image + static_cast<point_id>(k) - 1; }
-};
-
-/// Pair (i, j) of a small system (a thread per pair, p = i * n + j): j's wrapped copy and
-/// images walked as row i's candidates, counted into pair_offsets[p + 1] when !Pick, else
-/// picked from pair_offsets[p] on. Row i is its n pairs in turn: (j, S) order.
-template <int D, Metric M, bool Pick>
-__global__ void walk_pairs(const std::int64_t* first, std::int64_t n, ImageTables tables, CellFrame frame,
-                           double threshold, bool half, bool self_interaction, std::int64_t* pair_offsets,
-                           std::uint64_t* picked) {
-  const std::int64_t p = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
-  if (p >= n * n) return;
-  const std::int64_t i = p / n, j = p % n;
-  const auto limit = [threshold](point_id, point_id) { return threshold; };
-  const PointAndImages row{static_cast<point_id>(j), static_cast<point_id>(n + first[j])};
-  const auto length = static_cast<std::size_t>(1 + first[j + 1] - first[j]);
-  std::int64_t at = Pick ? pair_offsets[p] : 0;
-  walk_row<D, M>(row, length, static_cast<point_id>(i), tables, frame, limit, half, self_interaction && i == j,
-                 [&](const CellEntry&, std::int64_t position) {
-                   if constexpr (Pick) picked[at] = pick_of(i, position < 0 ? 0 : row[position], position);
-                   ++at;
-                 });
-  if constexpr (!Pick) pair_offsets[p + 1] = at;
-}
-
-/// Row i's offset: that of its first pair (i, 0).
-__global__ void row_offsets_of_pairs(const std::int64_t* pair_offsets, std::int64_t n, std::int64_t* offsets) {
-  const std::int64_t i = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
-  if (i <= n) offsets[i] = pair_offsets[i * n];
 }
 
 /// Where the entries' outputs go (null: not asked for).
@@ -135,15 +96,15 @@ struct EntryArrays {
 /// A thread per entry, so that neighbouring threads write neighbouring entries: each picked
 /// candidate measured again (candidate_entry, the walk's own) and written.
 template <int D, Metric M>
-__global__ void write_entries(const std::uint64_t* picked, std::int64_t total, ImageTables tables, CellFrame frame,
-                              EntryArrays out) {
+__global__ void write_entries(const std::uint64_t* picked, std::int64_t total, const std::int64_t* candidate_offsets,
+                              const point_id* candidates, ImageTables tables, CellFrame frame, EntryArrays out) {
   const std::int64_t at = blockIdx.x * static_cast<std::int64_t>(blockDim.x) + threadIdx.x;
   if (at >= total) return;
   const auto i = static_cast<point_id>(picked[at] >> 32);
-  const auto k = static_cast<std::uint32_t>(picked[at]);
+  const auto position = static_cast<std::uint32_t>(picked[at]);
   CellEntry e;
-  if (k == ~0u) self_entry<D, M>(i, tables, frame, e);
-  else candidate_entry<D, M>(static_cast<point_id>(k), i, tables, frame, e);
+  if (position == ~0u) self_entry<D, M>(i, tables, frame, e);
+  else candidate_entry<D, M>(candidates[candidate_offsets[i] + position], i, tables, frame, e);
   out.indices[at] = e.j;
   for (int a = 0; a < D; ++a) {
     if (out.shifts) out.shifts[at * D + a] = e.shift[a];
@@ -173,10 +134,6 @@ std::int64_t scan_in_place(std::int64_t* offsets, std::int64_t n, cudaStream_t s
   throw Error("point " + std::to_string(value / static_cast<unsigned long long>(dims)) +
               " has a non-finite coordinate (" + std::to_string(bad) + ")");
 }
-
-/// A small system's rows are walked a thread per pair of points (walk_pairs): up to this many
-/// pairs, and this many candidates in all (points times points and images).
-constexpr std::size_t small_system_pairs = std::size_t{1} << 22, small_system_candidates = std::size_t{1} << 24;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -241,26 +198,19 @@ DeviceNeighborList DeviceListAccess::search_cell(const double* xyz, std::size_t 
                                                              image_shift.get());
   check_launch("place_images");
   fractional.reset();
+  first.reset();
 
-  // The candidates. A small system walks a thread per pair of points (i, j), j's wrapped copy
-  // and images as candidates: the engine's grid costs a dozen kernels and their waits (0.4-2.6
-  // ms a call on an H100 for 1 to 4,096 atoms). A larger one runs the engine's query search of
-  // the wrapped points among them all, a thread per row walking it.
-  const bool small = count * count <= small_system_pairs && count * local_count <= small_system_candidates;
-  DeviceNeighborList engine_rows;
-  if (!small) {
-    first.reset();
-    SearchOptions inner = options;
-    inner.horizon = problem.largest + margin;
-    inner.half = false;
-    inner.sort_rows = true;
-    inner.queries = count;
-    inner.box = {0, 0, 0};
-    inner.cell = Cell{};
-    inner.outputs = PairOutputs{};
-    inner.self_interaction = false;
-    engine_rows = search(local.get(), local_count, dims, inner, stream, nullptr, nullptr);
-  }
+  // The candidates: the engine's query search of the wrapped points among them all.
+  SearchOptions inner = options;
+  inner.horizon = problem.largest + margin;
+  inner.half = false;
+  inner.sort_rows = true;
+  inner.queries = count;
+  inner.box = {0, 0, 0};
+  inner.cell = Cell{};
+  inner.outputs = PairOutputs{};
+  inner.self_interaction = false;
+  const DeviceNeighborList candidates = search(local.get(), local_count, dims, inner, stream, nullptr, nullptr);
   if (stats) {
     HORIZON_CUDA_CHECK(cudaStreamSynchronize(stream));
     stats->grid_seconds = seconds_since(start);
@@ -271,30 +221,15 @@ DeviceNeighborList DeviceListAccess::search_cell(const double* xyz, std::size_t 
   // then the entries written, a thread each.
   const ImageTables tables{xyz, wraps.get(), image_of.get(), image_shift.get(), count};
   const double threshold = metric_threshold(problem.metric, problem.horizon);
-  DeviceArray<std::int64_t> pair_offsets(small ? count * count + 1 : 0, meter);
   const auto walk = [&](auto d, auto m, auto pick, std::uint64_t* picked) {
-    constexpr int D = decltype(d)::value;
-    constexpr Metric M = decltype(m)::value;
-    constexpr bool Pick = decltype(pick)::value;
-    if (small)
-      walk_pairs<D, M, Pick><<<blocks_for(count * count), block_size, 0, stream>>>(
-          first.get(), n, tables, problem.frame, threshold, problem.half, problem.self_interaction,
-          pair_offsets.get(), picked);
-    else
-      walk_rows<D, M, Pick><<<blocks_for(count), block_size, 0, stream>>>(
-          engine_rows.offsets(), engine_rows.indices(), n, tables, problem.frame, threshold, problem.half,
-          problem.self_interaction, offsets.get(), picked);
+    walk_rows<decltype(d)::value, decltype(m)::value, decltype(pick)::value>
+        <<<blocks_for(count), block_size, 0, stream>>>(candidates.offsets(), candidates.indices(), n, tables,
+                                                       problem.frame, threshold, problem.half,
+                                                       problem.self_interaction, offsets.get(), picked);
   };
   with_dims_and_metric(dims, problem.metric, [&](auto d, auto m) { walk(d, m, std::false_type{}, nullptr); });
-  check_launch("walk (count)");
-  std::int64_t total = 0;
-  if (small) {
-    total = scan_in_place(pair_offsets.get(), n * n, stream, meter);
-    row_offsets_of_pairs<<<blocks_for(count + 1), block_size, 0, stream>>>(pair_offsets.get(), n, offsets.get());
-    check_launch("row_offsets_of_pairs");
-  } else {
-    total = scan_in_place(offsets.get(), n, stream, meter);
-  }
+  check_launch("walk_rows (count)");
+  const std::int64_t total = scan_in_place(offsets.get(), n, stream, meter);
 
   const auto entries = static_cast<std::size_t>(total), d = static_cast<std::size_t>(dims);
   const std::size_t entry_bytes = sizeof(point_id) + (wanted.shifts ? d * sizeof(std::int32_t) : 0) +
@@ -308,7 +243,7 @@ DeviceNeighborList DeviceListAccess::search_cell(const double* xyz, std::size_t 
                             needed, available);
   DeviceArray<std::uint64_t> picked(entries, meter);
   with_dims_and_metric(dims, problem.metric, [&](auto d, auto m) { walk(d, m, std::true_type{}, picked.get()); });
-  check_launch("walk (pick)");
+  check_launch("walk_rows (pick)");
   DeviceArray<point_id> indices(entries, meter);
   DeviceArray<std::int32_t> shifts(wanted.shifts ? entries * d : 0, meter);
   DeviceArray<double> distances(wanted.distances ? entries : 0, meter), vectors(wanted.vectors ? entries * d : 0, meter);
@@ -316,7 +251,7 @@ DeviceNeighborList DeviceListAccess::search_cell(const double* xyz, std::size_t 
   if (entries > 0) {
     with_dims_and_metric(dims, problem.metric, [&](auto d, auto m) {
       write_entries<decltype(d)::value, decltype(m)::value><<<blocks_for(entries), block_size, 0, stream>>>(
-          picked.get(), total, tables, problem.frame, out);
+          picked.get(), total, candidates.offsets(), candidates.indices(), tables, problem.frame, out);
     });
     check_launch("write_entries");
   }
