@@ -8,6 +8,7 @@
 
 #include <parallel/algorithm>
 
+#include "parallel_for.hpp"
 #include "parallel_scan.hpp"
 #include "radix_sort.hpp"
 
@@ -73,17 +74,15 @@ void CellIndex::build(const Coordinate& coordinate, int threads, Images images) 
   if (!images.points.empty()) {
     const auto cells = static_cast<std::int64_t>(occupied_cells());
     cell_rows_end_.resize(static_cast<std::size_t>(cells));
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-    for (std::int64_t c = 0; c < cells; ++c) {
+    detail::parallel_for(cells, threads, [&](std::int64_t c) {
       // Back from the cell's end over its images: most cells hold none, so this is one
       // predictable test where a binary search mispredicted (3 % of a periodic search).
       std::int64_t end = cell_begin_[c + 1];
       while (end > cell_begin_[c] && order_[static_cast<std::size_t>(end - 1)] >= rows) --end;
       cell_rows_end_[c] = end;
-    }
+    });
   }
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-  for (std::int64_t p = 0; p < n; ++p) {
+  detail::parallel_for(n, threads, [&](std::int64_t p) {
     // Input in random order: each point's coordinates are a cache miss; fetch them ahead
     // (random cloud of 10^6, one core of the 2-core Zen 5 VM: cell index 25-26 -> 22-23 ms).
     if (p + 16 < n) coordinate.prefetch(static_cast<std::size_t>(order_[p + 16]));
@@ -91,7 +90,7 @@ void CellIndex::build(const Coordinate& coordinate, int threads, Images images) 
     for (int a = 0; a < 3; ++a)
       sorted_[a][static_cast<std::size_t>(p)] = a < grid_.dims ? coordinate(static_cast<std::size_t>(i), a) : 0.0;
     if (i >= rows) order_[p] = images.image_of[static_cast<std::size_t>(i - rows)];
-  }
+  });
 }
 
 // Points by linear cell id, stable, so a cell's points are ascending by input id whatever the
@@ -134,16 +133,14 @@ void CellIndex::sort_dense(const Coordinate& coordinate, int threads) {
   const std::int64_t blocks = std::max(1, threads) * 4;
   std::vector<std::int64_t> occupied(static_cast<std::size_t>(blocks) + 1, 0);
   auto block_cells = [&](std::int64_t b) { return std::pair{cells * b / blocks, cells * (b + 1) / blocks}; };
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-  for (std::int64_t b = 0; b < blocks; ++b) {
+  detail::parallel_for(blocks, threads, [&](std::int64_t b) {
     const auto [first, last] = block_cells(b);
     for (std::int64_t c = first; c < last; ++c) occupied[b + 1] += start[c + 1] > start[c];
-  }
+  });
   detail::inclusive_scan(occupied.data(), occupied.size(), 1);
   cell_begin_.resize(static_cast<std::size_t>(occupied.back()));
   cell_coord_.resize(cell_begin_.size());
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-  for (std::int64_t b = 0; b < blocks; ++b) {
+  detail::parallel_for(blocks, threads, [&](std::int64_t b) {
     const auto [first, last] = block_cells(b);
     std::int64_t out = occupied[b];
     // The cell's coordinates stepped along with it: a division per cell cost more than the rest.
@@ -159,7 +156,7 @@ void CellIndex::sort_dense(const Coordinate& coordinate, int threads) {
         if (++cy == ny) cy = 0, ++cz;
       }
     }
-  }
+  });
 }
 
 // Sparse: points sorted by (cz, cy, cx, id); memory stays O(N) whatever the extent. When every

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "memory_check.hpp"
+#include "parallel_for.hpp"
 #include "parallel_scan.hpp"
 #include "row_batches.hpp"
 
@@ -93,9 +94,8 @@ bool pairs_countable(const FamilyPass& pass) {
 
 /// offsets[i + 1] = the family size of each point i with a row in `pass`, by the count pass over `runs`.
 void count_each_row(const FamilyPass& pass, const std::vector<CellRun>& runs, int threads) {
-  const auto run_count = static_cast<std::int64_t>(runs.size());
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
-  for (std::int64_t r = 0; r < run_count; ++r) count_families(pass, runs[static_cast<std::size_t>(r)]);
+  parallel_for_dynamic(static_cast<std::int64_t>(runs.size()), threads,
+                       [&](std::int64_t r) { count_families(pass, runs[static_cast<std::size_t>(r)]); });
 }
 
 /// Row offsets of every point: the count pass over `runs` (or each pair once, over slabs),
@@ -107,21 +107,16 @@ Buffer<std::int64_t> count_rows(FamilyPass& pass, const std::vector<CellRun>& ru
   pass.offsets = offsets.data();
   if (pairs_countable(pass)) {
     ScratchBuffer<std::int64_t> counts(index.point_count() + CellIndex::padding);
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-    for (std::int64_t p = 0; p < static_cast<std::int64_t>(counts.size()); ++p) counts[p] = 0;
-    for (const std::vector<CellBlock>& colour : count_pass_blocks(index, threads)) {
-      const auto block_count = static_cast<std::int64_t>(colour.size());
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
-      for (std::int64_t b = 0; b < block_count; ++b)
+    parallel_for(static_cast<std::int64_t>(counts.size()), threads, [&](std::int64_t p) { counts[p] = 0; });
+    for (const std::vector<CellBlock>& colour : count_pass_blocks(index, threads))
+      parallel_for_dynamic(static_cast<std::int64_t>(colour.size()), threads, [&](std::int64_t b) {
         for (const CellRun run : colour[static_cast<std::size_t>(b)]) count_each_pair_once(pass, run, counts.data());
-    }
+      });
     const point_id* order = index.order().data();
-    const auto cells = static_cast<std::int64_t>(index.occupied_cells());
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-    for (std::int64_t c = 0; c < cells; ++c) {  // a cell's rows: its points before its images
-      const auto [first, last] = index.rows_of(static_cast<std::size_t>(c));
+    parallel_for(static_cast<std::int64_t>(index.occupied_cells()), threads, [&](std::int64_t c) {
+      const auto [first, last] = index.rows_of(static_cast<std::size_t>(c));  // its points, then its images
       for (std::int64_t p = first; p < last; ++p) offsets[order[p] + 1] = counts[p];
-    }
+    });
   } else {
     std::memset(offsets.data(), 0, offsets.size() * sizeof(std::int64_t));
     count_each_row(pass, runs, threads);
@@ -131,9 +126,8 @@ Buffer<std::int64_t> count_rows(FamilyPass& pass, const std::vector<CellRun>& ru
 }
 
 void fill_rows(const FamilyPass& pass, const std::vector<CellRun>& runs, int threads) {
-  const auto run_count = static_cast<std::int64_t>(runs.size());
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
-  for (std::int64_t r = 0; r < run_count; ++r) fill_families(pass, runs[static_cast<std::size_t>(r)]);
+  parallel_for_dynamic(static_cast<std::int64_t>(runs.size()), threads,
+                       [&](std::int64_t r) { fill_families(pass, runs[static_cast<std::size_t>(r)]); });
 }
 
 }  // namespace

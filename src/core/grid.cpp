@@ -25,12 +25,16 @@ Bounds bounds_of(const T* xyz, std::int64_t n, int threads) {
   auto at = [xyz](std::int64_t i, int a) { return a < D ? static_cast<double>(xyz[i * D + a]) : 0.0; };
   double lx = at(0, 0), ly = at(0, 1), lz = at(0, 2);
   double hx = lx, hy = ly, hz = lz;
-#pragma omp parallel for num_threads(threads) if (threads > 1) \
-    reduction(min : lx, ly, lz) reduction(max : hx, hy, hz)
-  for (std::int64_t i = 0; i < n; ++i) {
+  auto extend = [at](std::int64_t i, double& lx, double& ly, double& lz, double& hx, double& hy, double& hz) {
     const double x = at(i, 0), y = at(i, 1), z = at(i, 2);
     lx = std::min(lx, x), ly = std::min(ly, y), lz = std::min(lz, z);
     hx = std::max(hx, x), hy = std::max(hy, y), hz = std::max(hz, z);
+  };
+  if (threads <= 1) {  // no parallel region (parallel_for.hpp says why)
+    for (std::int64_t i = 0; i < n; ++i) extend(i, lx, ly, lz, hx, hy, hz);
+  } else {
+#pragma omp parallel for num_threads(threads) reduction(min : lx, ly, lz) reduction(max : hx, hy, hz)
+    for (std::int64_t i = 0; i < n; ++i) extend(i, lx, ly, lz, hx, hy, hz);
   }
   Bounds box;
   box.lo = {lx, ly, lz};
