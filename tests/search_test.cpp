@@ -170,6 +170,29 @@ TEST(Backends, AFewPointsTestEveryPairAsTheOracleDoes) {
   }
 }
 
+TEST(Backends, SmallSearchesFilledIntoRoomEqualTheOracle) {
+  // Below 4,096 points one thread fills rows into room for their stencils (no count pass), or
+  // counts first where a stencil holds 256 candidates or more (dense clusters): both as the
+  // oracle, with half and unsorted rows, queries, every metric, 2-D and 3-D.
+  const Metric metrics[] = {Metric::euclidean, Metric::manhattan, Metric::chebyshev};
+  int problem = 0;
+  for (std::size_t n : {65, 700, 4095, 4096})
+    for (int dims : {2, 3})
+      for (bool clustered : {false, true}) {
+        const PointSet points = clustered ? clustered_cloud(n, 3, 0.05, dims, 9 + n) : random_cloud(n, dims, 9 + n);
+        SearchOptions options = options_for(dims == 3 ? 1.2 : 0.5);
+        options.metric = metrics[problem % 3];
+        options.half = problem % 2 == 1;
+        options.sort_rows = problem % 4 != 2;
+        options.queries = problem % 5 == 3 ? n / 2 : 0;
+        const NeighborList list = search(points.view(), options);
+        const NeighborList expected = brute_force(points.view(), options);
+        if (options.sort_rows) EXPECT_EQ(list, expected) << n << " points, " << dims << "-D, problem " << problem;
+        else testing::expect_same_families(list, expected);
+        ++problem;
+      }
+}
+
 TEST(Backends, AutoPicksAnAvailableBackend) {
   SearchStats stats;
   const PointSet points = lattice(5);

@@ -222,6 +222,7 @@ void VisitCells(const FamilyPass& pass, CellRun run) {
       const bool to_sort = options.sort_rows && !sorted, network = to_sort && found <= short_row;
       if (to_sort && !network) insertion_sort(row, row + found);
       pending[pending_rows++] = {row, found, network, with_self != 0, self, pass.indices + (offsets[self] - base)};
+      if (pass.found) pass.found[self] = found - with_self;
     } else {
       offsets[self + 1] = found - with_self;
     }

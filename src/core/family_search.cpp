@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <numeric>
+#include <optional>
 
 #include "memory_check.hpp"
 #include "parallel_for.hpp"
@@ -130,9 +132,54 @@ void fill_rows(const FamilyPass& pass, const std::vector<CellRun>& runs, int thr
                        [&](std::int64_t r) { fill_families(pass, runs[static_cast<std::size_t>(r)]); });
 }
 
+/// Below this many points, one thread fills each row into room for its whole stencil and moves
+/// the rows together afterwards, with no count pass: the room is at most a few MB, and the
+/// count was a fifth of the call (1,000 random points, 30 neighbours each, one core of the
+/// 2-core Zen 4 VM: 82 -> 66 us; 100 points 7.9 -> 6.5 us; 3,000 points 292 -> 264 us).
+constexpr std::size_t fill_into_room_below = 4096;
+
+/// The list by one fill pass into room for every row (fill_into_room_below), or nothing when a
+/// stencil holds 256 candidates or more: there the fill takes a cell's rows from its sorted
+/// stencil when one of them is longer than the sorting network, which a row's room (its
+/// stencil's size) would always claim.
+std::optional<NeighborList> search_families_in_room(const CellIndex& index, const SearchOptions& options) {
+  const std::size_t n = index.row_count();
+  const std::size_t queries = options.queries ? options.queries : n;
+  Buffer<std::int64_t> room(n + 1, 0);  // row i's room starts at room[i] once scanned
+  std::vector<CellIndex::Range> stencil(static_cast<std::size_t>(index.max_stencil_rows()));
+  const point_id* order = index.order().data();
+  for (std::size_t c = 0; c < index.occupied_cells(); ++c) {
+    const auto [first, last] = index.rows_of(c);
+    if (first == last) continue;
+    const int runs = index.stencil(c, stencil.data());
+    std::int64_t candidates = 0;
+    for (int r = 0; r < runs; ++r) candidates += stencil[static_cast<std::size_t>(r)].end - stencil[static_cast<std::size_t>(r)].begin;
+    if (candidates >= 256) return std::nullopt;
+    for (std::int64_t p = first; p < last; ++p)
+      if (static_cast<std::size_t>(order[p]) < queries) room[order[p] + 1] = candidates;
+  }
+  std::partial_sum(room.begin(), room.end(), room.begin());
+  ScratchBuffer<point_id> rows(static_cast<std::size_t>(room[n]));
+  Buffer<std::int64_t> offsets(n + 1, 0);  // the rows' lengths (pass.found), then their offsets
+  FamilyPass pass{&index, &options};
+  pass.offsets = room.data();
+  pass.indices = rows.data();
+  pass.found = offsets.data() + 1;
+  fill_families(pass, CellRun{0, index.occupied_cells()});
+  std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
+  check_list_fits(offsets[n], options);
+  Buffer<point_id> indices(static_cast<std::size_t>(offsets[n]));
+  for (std::size_t i = 0; i < n; ++i)
+    std::memcpy(indices.data() + offsets[i], rows.data() + room[i],
+                static_cast<std::size_t>(offsets[i + 1] - offsets[i]) * sizeof(point_id));
+  return NeighborList(std::move(offsets), std::move(indices), options.half);
+}
+
 }  // namespace
 
 NeighborList search_families(const CellIndex& index, const SearchOptions& options, int threads) {
+  if (threads == 1 && index.row_count() < fill_into_room_below && index.row_count() == index.point_count())
+    if (std::optional<NeighborList> list = search_families_in_room(index, options)) return std::move(*list);
   const std::vector<CellRun> runs = split_into_runs(index, threads);
   FamilyPass pass{&index, &options};
   Buffer<std::int64_t> offsets = count_rows(pass, runs, threads);

@@ -65,6 +65,9 @@ struct FamilyPass {
   /// by sorted position, padded like the coordinates; a pair is kept only below both its row's
   /// and its candidate's. Such rows never come from the sorted stencil.
   const double* candidate_threshold = nullptr;
+  /// fill: when set, row i goes to indices + offsets[i] - indices_base as always, but the
+  /// offsets are only room for it (its stencil's size), and its length is written to found[i].
+  std::int64_t* found = nullptr;
 };
 
 /// For each point i of the run: offsets[i + 1] = the size of its family. Compiled for each SIMD
