@@ -163,6 +163,9 @@ int main(int argc, char** argv) {
   app.add_option("--busy", latency_options.busy, "with --latency: busy processes beside the calls (-1: one per hardware thread)")
       ->delimiter(',');
   app.add_option("--seconds", latency_options.seconds, "with --latency: seconds of calls per size, backend and load");
+  app.add_option("--block", latency_options.block,
+                 "with --latency: calls of one backend in a row, in turn with the others' (1: each call finds the "
+                 "caches as the other backends left them)");
   CLI11_PARSE(app, argc, argv);
   if (latency) return bench::run_latency(latency_options);
   if (threads == 0) threads = omp_get_max_threads();

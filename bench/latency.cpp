@@ -54,9 +54,10 @@ struct Calls {
   std::vector<double> us;  // every call after the first, sorted
 };
 
-/// The first call of each apart, then calls in turn (one of each per round, so that every one
-/// meets the machine's same moments) until `seconds` per call have passed (at least 11 each).
-std::vector<Calls> time_in_turn(const std::vector<std::function<void()>>& calls, double seconds) {
+/// The first call of each apart, then calls in turn (`block` of each per round, so that every
+/// one meets the machine's same moments) until `seconds` per call have passed (at least 11
+/// rounds). With a block of one, each call finds the caches as the others left them.
+std::vector<Calls> time_in_turn(const std::vector<std::function<void()>>& calls, double seconds, int block) {
   std::vector<Calls> timed(calls.size());
   horizon::Stopwatch clock;
   for (std::size_t k = 0; k < calls.size(); ++k) {
@@ -68,11 +69,12 @@ std::vector<Calls> time_in_turn(const std::vector<std::function<void()>>& calls,
   const auto spent = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   const double budget = seconds * static_cast<double>(calls.size());
   for (std::size_t round = 0; round < 11 || (spent() < budget && round < 100000); ++round)
-    for (std::size_t k = 0; k < calls.size(); ++k) {
-      clock.lap();
-      calls[k]();
-      timed[k].us.push_back(clock.lap() * 1e6);
-    }
+    for (std::size_t k = 0; k < calls.size(); ++k)
+      for (int repeat = 0; repeat < block; ++repeat) {
+        clock.lap();
+        calls[k]();
+        timed[k].us.push_back(clock.lap() * 1e6);
+      }
   for (Calls& c : timed) std::sort(c.us.begin(), c.us.end());
   return timed;
 }
@@ -107,8 +109,9 @@ double quantile(const std::vector<double>& sorted, double q) {
 
 int run_latency(const LatencyOptions& options) {
   const int hardware = static_cast<int>(std::thread::hardware_concurrency());
-  std::printf("# latency: random clouds with %g neighbours per point on average; %d hardware threads; %s\n",
-              options.neighbours, hardware, horizon::cpu_simd_target());
+  std::printf("# latency: random clouds with %g neighbours per point on average; %d hardware threads; %s; "
+              "%d call(s) of each in turn\n",
+              options.neighbours, hardware, horizon::cpu_simd_target(), std::max(1, options.block));
   std::printf("busy,points,backend,threads,calls,median_us,p99_us,max_us,first_us,entries\n");
   for (int busy : options.busy) {
     const int processes = busy < 0 ? hardware : busy;
@@ -145,7 +148,7 @@ int run_latency(const LatencyOptions& options) {
           search.backend = backends[k];
           entries[k + 1] = horizon::search(points.view(), search, &stats[k]).total();
         });
-      const std::vector<Calls> timed = time_in_turn(calls, options.seconds);
+      const std::vector<Calls> timed = time_in_turn(calls, options.seconds, std::max(1, options.block));
       report("textbook", 1, timed[0], entries[0]);
 #if defined(HORIZON_WITH_VESIN)
       report("vesin", 1, timed[1], vesin_entries);

@@ -10,6 +10,7 @@ struct LatencyOptions {
   std::vector<int> busy{0, -1};  ///< busy processes started beside the calls (-1: one per hardware thread)
   double neighbours = 30;        ///< mean neighbours per point (the cloud's density)
   double seconds = 1.0;          ///< time spent per size, backend and load (at least 11 calls)
+  int block = 1;                 ///< calls of one backend in a row before the next one's
 };
 
 /// Prints CSV: busy, points, backend, threads, calls, median_us, p99_us, max_us, first_us. The
