@@ -1,5 +1,5 @@
 // The serial backend's search of a few points: every pair tested, no grid. Below a few dozen
-// points the grid's arrays and passes cost more than all the pairs do (see all_pairs_points).
+// points the grid's arrays and passes cost more than all the pairs do (all_pairs_points).
 #include "all_pairs_search.hpp"
 
 #include <bit>

@@ -153,7 +153,10 @@ std::optional<NeighborList> search_families_in_room(const CellIndex& index, cons
     if (first == last) continue;
     const int runs = index.stencil(c, stencil.data());
     std::int64_t candidates = 0;
-    for (int r = 0; r < runs; ++r) candidates += stencil[static_cast<std::size_t>(r)].end - stencil[static_cast<std::size_t>(r)].begin;
+    for (int r = 0; r < runs; ++r) {
+      const CellIndex::Range& run = stencil[static_cast<std::size_t>(r)];
+      candidates += run.end - run.begin;
+    }
     if (candidates >= 256) return std::nullopt;
     for (std::int64_t p = first; p < last; ++p)
       if (static_cast<std::size_t>(order[p]) < queries) room[order[p] + 1] = candidates;
