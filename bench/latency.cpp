@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <numeric>
+#include <random>
 #include <string>
 #include <thread>
 #include <vector>
@@ -57,9 +59,10 @@ struct Calls {
 /// The first call of each apart, then calls in turn (`block` of each per round, so that every
 /// one meets the machine's same moments) until `seconds` per call have passed (at least 11
 /// rounds). With a block of one, each call finds the caches as the others left them. Each round
-/// starts one call later, so that each call follows each other one equally often: an `openmp`
-/// call's team keeps spinning for a while after it returns (libgomp's wait policy), which slowed
-/// whichever call came next (100 points on the 2-core VM: 9.9 us against 7.1 for the same code).
+/// takes the calls in a new random order, so that each follows each other equally often: an
+/// `openmp` call's team keeps spinning for a while after it returns (libgomp's wait policy),
+/// which slowed whichever call came next (100 points on the 2-core VM: the default after
+/// `openmp` in every round took 9.9 us, `serial` 7.1, for the same code).
 std::vector<Calls> time_in_turn(const std::vector<std::function<void()>>& calls, double seconds, int block) {
   std::vector<Calls> timed(calls.size());
   horizon::Stopwatch clock;
@@ -71,15 +74,18 @@ std::vector<Calls> time_in_turn(const std::vector<std::function<void()>>& calls,
   const auto start = std::chrono::steady_clock::now();
   const auto spent = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   const double budget = seconds * static_cast<double>(calls.size());
-  for (std::size_t round = 0; round < 11 || (spent() < budget && round < 100000); ++round)
-    for (std::size_t turn = 0; turn < calls.size(); ++turn) {
-      const std::size_t k = (round + turn) % calls.size();
+  std::vector<std::size_t> order(calls.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::mt19937 shuffler(1);
+  for (std::size_t round = 0; round < 11 || (spent() < budget && round < 100000); ++round) {
+    std::shuffle(order.begin(), order.end(), shuffler);
+    for (const std::size_t k : order)
       for (int repeat = 0; repeat < block; ++repeat) {
         clock.lap();
         calls[k]();
         timed[k].us.push_back(clock.lap() * 1e6);
       }
-    }
+  }
   for (Calls& c : timed) std::sort(c.us.begin(), c.us.end());
   return timed;
 }
