@@ -173,8 +173,8 @@ std::optional<NeighborList> search_families_in_room(const CellIndex& index, cons
   check_list_fits(offsets[n], options);
   Buffer<point_id> indices(static_cast<std::size_t>(offsets[n]));
   for (std::size_t i = 0; i < n; ++i)
-    std::memcpy(indices.data() + offsets[i], rows.data() + room[i],
-                static_cast<std::size_t>(offsets[i + 1] - offsets[i]) * sizeof(point_id));
+    if (const std::int64_t length = offsets[i + 1] - offsets[i]; length > 0)  // an empty list has no data()
+      std::memcpy(indices.data() + offsets[i], rows.data() + room[i], static_cast<std::size_t>(length) * sizeof(point_id));
   return NeighborList(std::move(offsets), std::move(indices), options.half);
 }
 
