@@ -30,13 +30,21 @@ Images make_images(PointView points, const CellProblem& problem, double reach_ma
   double reach[3];
   images_reach(problem, reach_margin, reach);
   // Ranges are per point (a point's own fraction decides which images are near the cell).
-  std::int64_t too_far = n;
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1 && n > 4096) reduction(min : too_far)
-  for (std::int64_t i = 0; i < n; ++i) {
+  // A team only for many points; one thread enters no parallel region (parallel_for.hpp says why).
+  const int team = n > 4096 ? threads : 1;
+  const auto wrap = [&](std::int64_t i) {  // false: point i lies too far from the cell
     double* x = images.original.data() + i * dims;
     for (int a = 0; a < dims; ++a) x[a] = points(static_cast<std::size_t>(i), a);
-    if (!wrap_into_cell(x, frame, reach, &images.wraps[i * 3], &fractional[i * 3], first[i + 1]))
-      too_far = std::min(too_far, i);
+    return wrap_into_cell(x, frame, reach, &images.wraps[i * 3], &fractional[i * 3], first[i + 1]);
+  };
+  std::int64_t too_far = n;
+  if (team <= 1) {
+    for (std::int64_t i = 0; i < n; ++i)
+      if (!wrap(i)) too_far = std::min(too_far, i);
+  } else {
+#pragma omp parallel for schedule(static) num_threads(team) reduction(min : too_far)
+    for (std::int64_t i = 0; i < n; ++i)
+      if (!wrap(i)) too_far = std::min(too_far, i);
   }
   if (too_far < n)
     throw Error("point " + std::to_string(too_far) + " lies more than 2^30 cells away from the cell");
@@ -49,8 +57,7 @@ Images make_images(PointView points, const CellProblem& problem, double reach_ma
   images.xyz = ScratchBuffer<double>((points.size() + total) * dims);
   images.image_of = ScratchBuffer<point_id>(total);
   images.image_shift = ScratchBuffer<std::int32_t>(total * 3);
-#pragma omp parallel for schedule(dynamic, 256) num_threads(threads) if (threads > 1 && n > 4096)
-  for (std::int64_t i = 0; i < n; ++i) {
+  const auto place = [&](std::int64_t i) {  // point i wrapped, then its images
     double* wrapped = images.xyz.data() + i * dims;
     for (int a = 0; a < dims; ++a)
       wrapped[a] = images.original[i * dims + a] - cells_along(&images.wraps[i * 3], frame, dims, a);
@@ -58,6 +65,12 @@ Images make_images(PointView points, const CellProblem& problem, double reach_ma
     write_images(wrapped, &fractional[i * 3], static_cast<point_id>(i), frame, reach,
                  images.xyz.data() + (points.size() + at) * dims, images.image_of.data() + at,
                  images.image_shift.data() + at * 3);
+  };
+  if (team <= 1) {
+    for (std::int64_t i = 0; i < n; ++i) place(i);
+  } else {
+#pragma omp parallel for schedule(dynamic, 256) num_threads(team)
+    for (std::int64_t i = 0; i < n; ++i) place(i);
   }
   return images;
 }
