@@ -148,10 +148,8 @@ int run_latency(const LatencyOptions& options) {
       VesinNeighborList vesin_list{};
       long long vesin_entries = 0;
       calls.push_back([&] { vesin_entries = run_vesin(points, 1.0, vesin_list); });
-      const std::size_t first_backend = 2;
-#else
-      const std::size_t first_backend = 1;
 #endif
+      const std::size_t first_backend = calls.size();
       for (std::size_t k = 0; k < backends.size(); ++k)
         calls.push_back([&, k] {
           horizon::SearchOptions search;

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "horizon/error.hpp"
+#include "parallel_for.hpp"
 #include "parallel_scan.hpp"
 
 namespace horizon::detail {
@@ -30,7 +31,8 @@ Images make_images(PointView points, const CellProblem& problem, double reach_ma
   double reach[3];
   images_reach(problem, reach_margin, reach);
   // Ranges are per point (a point's own fraction decides which images are near the cell).
-  // A team only for many points; one thread enters no parallel region (parallel_for.hpp says why).
+  // A team only for many points; one thread enters no parallel region (parallel_for.hpp says
+  // why; this loop's reduction keeps it out of parallel_for).
   const int team = n > 4096 ? threads : 1;
   const auto wrap = [&](std::int64_t i) {  // false: point i lies too far from the cell
     double* x = images.original.data() + i * dims;
@@ -66,12 +68,7 @@ Images make_images(PointView points, const CellProblem& problem, double reach_ma
                  images.xyz.data() + (points.size() + at) * dims, images.image_of.data() + at,
                  images.image_shift.data() + at * 3);
   };
-  if (team <= 1) {
-    for (std::int64_t i = 0; i < n; ++i) place(i);
-  } else {
-#pragma omp parallel for schedule(dynamic, 256) num_threads(team)
-    for (std::int64_t i = 0; i < n; ++i) place(i);
-  }
+  parallel_for_dynamic(n, team, place, 256);
   return images;
 }
 

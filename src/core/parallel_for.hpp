@@ -18,15 +18,15 @@ void parallel_for(std::int64_t n, int threads, F&& f) {
   for (std::int64_t i = 0; i < n; ++i) f(i);
 }
 
-/// Iterations handed out one at a time to whichever thread is free (schedule(dynamic, 1)): for
+/// Iterations handed out `chunk` at a time to whichever thread is free (schedule(dynamic)): for
 /// work items of uneven cost, such as runs of cells.
 template <class F>
-void parallel_for_dynamic(std::int64_t n, int threads, F&& f) {
+void parallel_for_dynamic(std::int64_t n, int threads, F&& f, int chunk = 1) {
   if (threads <= 1) {
     for (std::int64_t i = 0; i < n; ++i) f(i);
     return;
   }
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+#pragma omp parallel for schedule(dynamic, chunk) num_threads(threads)
   for (std::int64_t i = 0; i < n; ++i) f(i);
 }
 
